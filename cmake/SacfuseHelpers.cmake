@@ -1,0 +1,30 @@
+# sacfuse_module(NAME <lib> DIR <folder> [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
+# One folder = one static library made of every *.cc in it that is not a *_test.cc; each *_test.cc beside
+# the sources becomes one GoogleTest executable registered with CTest as <folder>/<file>.
+function(sacfuse_module)
+  cmake_parse_arguments(M "" "NAME;DIR" "PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
+  file(GLOB_RECURSE srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  file(GLOB_RECURSE tests CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*_test.cc)
+  if(tests)
+    list(REMOVE_ITEM srcs ${tests})
+  endif()
+  list(FILTER srcs EXCLUDE REGEX "/main\\.cc$")
+  add_library(${M_NAME} STATIC ${srcs})
+  target_include_directories(${M_NAME} PUBLIC ${PROJECT_SOURCE_DIR})
+  target_link_libraries(${M_NAME} PUBLIC ${M_PUBLIC_DEPS} PRIVATE ${M_PRIVATE_DEPS})
+  if(SACFUSE_TESTS)
+    foreach(t ${tests})
+      get_filename_component(tname ${t} NAME_WE)
+      set(target ${M_DIR}_${tname})
+      string(REPLACE "/" "_" target ${target})
+      add_executable(${target} ${t})
+      target_link_libraries(${target} PRIVATE ${M_NAME} sacfuse_test_support GTest::gtest GTest::gtest_main)
+      add_test(NAME ${M_DIR}/${tname} COMMAND ${target})
+      set_tests_properties(${M_DIR}/${tname} PROPERTIES
+        ENVIRONMENT "SACFUSE_SHARED=${SACFUSE_SHARED_DIR};SACFUSE_BIN=$<TARGET_FILE:sacfuse>")
+    endforeach()
+  endif()
+endfunction()
+
+# Where ../shared lives (real third-party data); tests that need it skip when it is absent.
+set(SACFUSE_SHARED_DIR "${PROJECT_SOURCE_DIR}/../shared" CACHE PATH "Path to the shared research data")

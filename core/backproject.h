@@ -1,0 +1,23 @@
+#pragma once
+// Depth pixels to world points.
+#include "core/camera.h"
+#include "core/point.h"
+#include "core/raster.h"
+#include "core/rigid3.h"
+#include "core/view.h"
+
+namespace sacfuse {
+
+// World point of depth pixel (col, row) with z-depth `depth_m`; `depth_camera` is the view's camera scaled to
+// the depth raster. The pixel centre (col + 0.5, row + 0.5) is used (COLMAP's stereo_fusion uses the corner,
+// a half-pixel shift we do not copy).
+inline Eigen::Vector3d DepthPixelToWorld(const PinholeCamera& depth_camera, const Rigid3d& world_from_cam, int col,
+                                         int row, double depth_m) {
+  return world_from_cam * depth_camera.Unproject(col + 0.5, row + 0.5, depth_m);
+}
+
+// Streams every valid depth pixel of one view into `sink` as a FusedPoint (colour sampled from `image` at the
+// pixel centre when given, which may have another resolution than the depth map). Returns the number of points.
+size_t BackprojectDepthMap(const View& view, const DepthMap& depth, const RgbImage* image, PointSink& sink);
+
+}  // namespace sacfuse

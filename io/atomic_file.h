@@ -1,0 +1,17 @@
+#pragma once
+// Never leave a partial output where a complete one is expected: write to a temporary name in the same folder,
+// fsync, rename over the final path, fsync the folder.
+#include <string>
+
+namespace sacfuse {
+
+// Temporary sibling name for `path` (unique per process and call).
+std::string TemporaryPathFor(const std::string& path);
+// fsync a written file by path; throws Error on failure.
+void FsyncPath(const std::string& path);
+// Rename `temp_path` onto `final_path` after fsyncing it, then fsync the parent folder.
+void CommitTemporaryFile(const std::string& temp_path, const std::string& final_path);
+// Whole-file convenience: contents -> temp -> fsync -> rename. Creates parent folders.
+void WriteFileAtomically(const std::string& path, const std::string& contents);
+
+}  // namespace sacfuse

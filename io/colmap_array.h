@@ -1,0 +1,27 @@
+#pragma once
+// COLMAP dense arrays (stereo/depth_maps/*.bin, stereo/normal_maps/*.bin): an ASCII header "W&H&C&" followed
+// by W*H*C little-endian float32 values in CHANNEL-PLANAR order (index = c*W*H + row*W + col). In memory we
+// use sacfuse::Raster (channel-interleaved); the conversion happens here.
+#include <string>
+
+#include "core/raster.h"
+
+namespace sacfuse {
+
+struct ColmapArrayShape {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  size_t data_offset = 0;  // bytes from the file start to the first float
+};
+
+// Reads only the header. Throws InputError (file named) for a malformed header or a file whose size does not
+// match W*H*C floats.
+ColmapArrayShape ReadColmapArrayShape(const std::string& path);
+Raster<float> ReadColmapArray(const std::string& path);
+// Rows [row_begin, row_end) of every channel; used by tiles that need a window.
+Raster<float> ReadColmapArrayRows(const std::string& path, int row_begin, int row_end);
+// Writes atomically (temporary name, fsync, rename).
+void WriteColmapArray(const std::string& path, const Raster<float>& raster);
+
+}  // namespace sacfuse

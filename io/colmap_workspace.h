@@ -1,0 +1,47 @@
+#pragma once
+// A COLMAP dense workspace as image_undistorter + patch_match_stereo leave it:
+//   images/<name>, sparse/{cameras,images,points3D}.{bin|txt},
+//   stereo/depth_maps/<name>.{geometric|photometric}.bin, stereo/normal_maps/<name>.<type>.bin,
+//   stereo/fusion.cfg (one image name per line; when present, only those images are used, in that order).
+// <name> may contain sub-folders.
+#include <string>
+#include <vector>
+
+#include "core/raster.h"
+#include "core/view.h"
+#include "io/colmap_model.h"
+
+namespace sacfuse {
+
+enum class ColmapDepthType { kGeometric, kPhotometric };
+
+class ColmapWorkspace {
+ public:
+  // Reads the sparse model and fusion.cfg. Views are numbered 0..n-1 in fusion.cfg order (else images order).
+  // Cameras must be PINHOLE or SIMPLE_PINHOLE, or another model whose distortion parameters are all zero.
+  ColmapWorkspace(const std::string& dir, ColmapDepthType depth_type);
+
+  const std::string& dir() const { return dir_; }
+  const std::vector<View>& views() const { return views_; }
+  const ColmapModel& model() const { return model_; }
+
+  std::string ImagePath(const View& view) const;
+  std::string DepthMapPath(const View& view) const;
+  std::string NormalMapPath(const View& view) const;
+
+  // Throws InputError naming the file (and the view) on missing, corrupt or mis-sized data.
+  DepthMap ReadDepthMap(const View& view) const;
+  NormalMap ReadNormalMap(const View& view) const;
+  RgbImage ReadImage(const View& view) const;
+
+ private:
+  std::string dir_;
+  ColmapDepthType depth_type_;
+  ColmapModel model_;
+  std::vector<View> views_;
+};
+
+// Writes stereo/fusion.cfg and stereo/patch-match.cfg for the given image names.
+void WriteColmapStereoConfigs(const std::string& workspace_dir, const std::vector<std::string>& image_names);
+
+}  // namespace sacfuse

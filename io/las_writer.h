@@ -1,0 +1,58 @@
+#pragma once
+// Streaming LAS writer: points go to disk in chunks, never the whole cloud in memory.
+//
+// The file is written under a temporary name in the same folder, the header (counts, points by return, bounds
+// from the stored integers) is patched at Close(), the data are fsynced, and only then is the file renamed to
+// its final path. A writer destroyed without Close() (an exception, a crash) removes its temporary file, so a
+// complete-looking file at the final path is always complete. Follows every rule of
+// ../shared/reference/jobs-and-las.md part B.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/point.h"
+#include "io/las_types.h"
+
+namespace sacfuse {
+
+struct LasWriterOptions {
+  // 4: LAS 1.4 with point format 7 (default). 2: LAS 1.2 with point format 3.
+  int version_minor = 4;
+  // Quantisation step, metres, all three axes. Must be 10^k x {1, 0.5, 0.25}.
+  double scale_m = 0.001;
+  // Offset, metres. When unset it is taken from the first point written, snapped down to a multiple of
+  // 1000 m, so UTM-sized coordinates fit int32 (+-2147 km at 1 mm). Tiles of one job pass one shared offset.
+  std::optional<Eigen::Vector3d> offset;
+  std::string system_identifier = "sacfuse";
+  std::string generating_software = "sacfuse";  // the CLI sets "sacfuse <version>"
+  // Extra VLRs written after the header (e.g. the CRS; issue 5 fills them).
+  std::vector<LasVlr> vlrs;
+  uint16_t global_encoding_extra_bits = 0;  // e.g. 0x10 (WKT) when a WKT VLR is given for LAS 1.4
+};
+
+class LasWriter : public PointSink {
+ public:
+  // Throws sacfuse::Error when the temporary file cannot be created or the options break a LAS rule.
+  LasWriter(const std::string& path, const LasWriterOptions& options);
+  ~LasWriter() override;  // removes the temporary file unless Close() succeeded
+  LasWriter(const LasWriter&) = delete;
+  LasWriter& operator=(const LasWriter&) = delete;
+
+  // Fused points: point source ID = view_index + 1, RGB scaled from 8 to 16 bit, return 1 of 1.
+  void Write(const FusedPoint* points, size_t count) override;
+  // General points (reference clouds, round trips of third-party files).
+  void WritePoints(const LasPoint* points, size_t count);
+  // Patches the header, fsyncs, renames into place. Throws on I/O errors (and leaves no file at the path).
+  void Close();
+
+  uint64_t num_points() const;
+  const std::string& path() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace sacfuse

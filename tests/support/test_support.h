@@ -1,0 +1,34 @@
+#pragma once
+// Helpers for tests: a per-test temporary directory and the location of ../shared research data.
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace sacfuse::testing {
+
+// A fresh empty directory under the system temp dir, removed when the object dies
+// (kept when SACFUSE_KEEP_TEST_DIRS is set, for debugging).
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// The shared research-data folder ($SACFUSE_SHARED, else ../shared next to the source tree), or nullopt when
+// absent. Tests that need it call GTEST_SKIP() with a message when this is empty.
+std::optional<std::filesystem::path> SharedDir();
+
+// Path of the built sacfuse binary ($SACFUSE_BIN), for end-to-end tests.
+std::string SacfuseBinary();
+
+// Runs a shell command, returns its exit code; stdout+stderr go to *output when given.
+int RunCommand(const std::string& command, std::string* output = nullptr);
+
+}  // namespace sacfuse::testing

@@ -1,0 +1,1 @@
+#include "tools/eval/eval_options.h"
