@@ -1,20 +1,27 @@
 #include "tools/cli/commands.h"
 
-#include <iostream>
-
 #include <CLI/CLI.hpp>
 
-#include "jobs/version.h"
+#include "tools/cli/cli_support.h"
 
 namespace sacfuse::cli {
 
 int Main(int argc, char** argv) {
-  CLI::App app{"sacfuse: Select-and-Combine depth-map fusion for aerial blocks"};
+  CLI::App app{"sacfuse: Select-and-Combine depth-map fusion for oriented aerial image blocks.\n"
+               "Run `sacfuse <command> --help` for the options of each command."};
   app.require_subcommand(1);
-  auto* version = app.add_subcommand("version", "Print the version");
-  version->callback([] { std::cout << VersionString() << "\n"; });
-  CLI11_PARSE(app, argc, argv);
-  return 0;
+  int exit_code = kExitOk;
+  AddRunCommand(app, &exit_code);
+  AddSimulateCommand(app, &exit_code);
+  AddEvalCommand(app, &exit_code);
+  AddVersionCommand(app, &exit_code);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitOk : kExitConfigError;
+  }
+  return exit_code;
 }
 
 }  // namespace sacfuse::cli

@@ -1,5 +1,17 @@
 #pragma once
+// Subcommands of the sacfuse binary, one file each.
+namespace CLI {
+class App;
+}
 
 namespace sacfuse::cli {
+
 int Main(int argc, char** argv);
+
+// Each adds its subcommand to `app`; when it runs, its exit code is stored in *exit_code.
+void AddRunCommand(CLI::App& app, int* exit_code);
+void AddSimulateCommand(CLI::App& app, int* exit_code);
+void AddEvalCommand(CLI::App& app, int* exit_code);
+void AddVersionCommand(CLI::App& app, int* exit_code);
+
 }  // namespace sacfuse::cli

@@ -1,0 +1,193 @@
+#include "config/config_schema.h"
+
+#include <iomanip>
+#include <set>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "core/error.h"
+
+namespace sacfuse {
+namespace {
+
+std::string NodeKind(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Sequence: return "a list";
+    case YAML::NodeType::Map: return "a mapping";
+    case YAML::NodeType::Null: return "nothing (null)";
+    default: return "\"" + n.Scalar() + "\"";
+  }
+}
+
+std::string FormatDouble(double v) {
+  std::ostringstream os;
+  os << std::setprecision(15) << v;
+  std::string s = os.str();
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string Quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out + "\"";
+}
+
+template <typename T>
+std::string ScalarAs(const YAML::Node& n, T* out, const char* type_name) {
+  if (!n.IsScalar()) return std::string("expected ") + type_name + ", got " + NodeKind(n);
+  try {
+    *out = n.as<T>();
+  } catch (const YAML::Exception&) {
+    return std::string("expected ") + type_name + ", got " + NodeKind(n);
+  }
+  return "";
+}
+
+}  // namespace
+
+void ConfigSchema::AddString(const std::string& key, std::string* field, const std::string& doc,
+                             std::vector<std::string> allowed) {
+  Entry e{key, doc, allowed, nullptr, nullptr};
+  e.set = [field, allowed](const YAML::Node& n) -> std::string {
+    std::string v;
+    if (auto err = ScalarAs(n, &v, "a string"); !err.empty()) return err;
+    if (!allowed.empty()) {
+      bool ok = false;
+      std::string list;
+      for (const auto& a : allowed) {
+        ok = ok || a == v;
+        list += (list.empty() ? "" : ", ") + a;
+      }
+      if (!ok) return "\"" + v + "\" is not one of {" + list + "}";
+    }
+    *field = v;
+    return "";
+  };
+  e.get = [field] { return Quote(*field); };
+  entries_.push_back(std::move(e));
+}
+
+void ConfigSchema::AddDouble(const std::string& key, double* field, const std::string& doc) {
+  Entry e{key, doc, {}, nullptr, nullptr};
+  e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "a number"); };
+  e.get = [field] { return FormatDouble(*field); };
+  entries_.push_back(std::move(e));
+}
+
+void ConfigSchema::AddInt(const std::string& key, int* field, const std::string& doc) {
+  Entry e{key, doc, {}, nullptr, nullptr};
+  e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "a whole number"); };
+  e.get = [field] { return std::to_string(*field); };
+  entries_.push_back(std::move(e));
+}
+
+void ConfigSchema::AddBool(const std::string& key, bool* field, const std::string& doc) {
+  Entry e{key, doc, {}, nullptr, nullptr};
+  e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "true or false"); };
+  e.get = [field] { return std::string(*field ? "true" : "false"); };
+  entries_.push_back(std::move(e));
+}
+
+void ConfigSchema::AddDoubleList(const std::string& key, std::vector<double>* field, const std::string& doc) {
+  Entry e{key, doc, {}, nullptr, nullptr};
+  e.set = [field](const YAML::Node& n) -> std::string {
+    if (!n.IsSequence()) return "expected a list of numbers like [2, 5], got " + NodeKind(n);
+    std::vector<double> values;
+    for (const auto& item : n) {
+      double v = 0;
+      if (auto err = ScalarAs(item, &v, "a number in the list"); !err.empty()) return err;
+      values.push_back(v);
+    }
+    *field = values;
+    return "";
+  };
+  e.get = [field] {
+    std::string s = "[";
+    for (size_t i = 0; i < field->size(); ++i) s += (i ? ", " : "") + FormatDouble((*field)[i]);
+    return s + "]";
+  };
+  entries_.push_back(std::move(e));
+}
+
+const ConfigSchema::Entry* ConfigSchema::Find(const std::string& key) const {
+  for (const auto& e : entries_) {
+    if (e.key == key) return &e;
+  }
+  return nullptr;
+}
+
+void ConfigSchema::ParseMap(const YAML::Node& node, const std::string& prefix, const std::string& source,
+                            std::vector<std::string>* errors) const {
+  for (const auto& kv : node) {
+    const std::string name = kv.first.Scalar();
+    const std::string key = prefix.empty() ? name : prefix + "." + name;
+    const std::string where = source + ":" + std::to_string(kv.first.Mark().line + 1) + ": " + key + ": ";
+    if (const Entry* e = Find(key)) {
+      if (auto err = e->set(kv.second); !err.empty()) errors->push_back(where + err);
+      continue;
+    }
+    // A section (prefix of some key)?
+    bool is_section = false;
+    for (const auto& e : entries_) is_section = is_section || e.key.rfind(key + ".", 0) == 0;
+    if (is_section) {
+      if (!kv.second.IsMap()) {
+        errors->push_back(where + "expected a mapping (a section), got " + NodeKind(kv.second));
+      } else {
+        ParseMap(kv.second, key, source, errors);
+      }
+      continue;
+    }
+    std::set<std::string> known;
+    for (const auto& e : entries_) {
+      if (prefix.empty() || e.key.rfind(prefix + ".", 0) == 0) {
+        const std::string rest = prefix.empty() ? e.key : e.key.substr(prefix.size() + 1);
+        known.insert(rest.substr(0, rest.find('.')));
+      }
+    }
+    std::string list;
+    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+    errors->push_back(where + "unknown key; allowed " + (prefix.empty() ? "at the top level" : "in " + prefix) +
+                      ": " + list);
+  }
+}
+
+void ConfigSchema::Parse(const YAML::Node& root, const std::string& source) const {
+  std::vector<std::string> errors;
+  if (root.IsNull()) return;  // an empty file means all defaults
+  if (!root.IsMap()) {
+    throw ConfigError(source + ":" + std::to_string(root.Mark().line + 1) +
+                      ": the config must be a YAML mapping (key: value), got " + NodeKind(root));
+  }
+  ParseMap(root, "", source, &errors);
+  if (!errors.empty()) {
+    std::string msg = source + ": invalid configuration";
+    for (const auto& e : errors) msg += "\n  " + e;
+    throw ConfigError(msg);
+  }
+}
+
+std::string ConfigSchema::Dump(bool with_comments) const {
+  std::ostringstream os;
+  std::string open_section;
+  for (const auto& e : entries_) {
+    const auto dot = e.key.rfind('.');
+    const std::string section = dot == std::string::npos ? "" : e.key.substr(0, dot);
+    const std::string leaf = dot == std::string::npos ? e.key : e.key.substr(dot + 1);
+    if (section != open_section) {
+      // Only one level of sections is used by sacfuse's configs.
+      if (!section.empty()) os << (open_section.empty() && os.tellp() == 0 ? "" : "\n") << section << ":\n";
+      open_section = section;
+    }
+    const std::string indent = section.empty() ? "" : "  ";
+    if (with_comments) os << indent << "# " << e.doc << "\n";
+    os << indent << leaf << ": " << e.get() << "\n";
+  }
+  return os.str();
+}
+
+}  // namespace sacfuse

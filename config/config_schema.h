@@ -1,0 +1,45 @@
+#pragma once
+// A table of YAML keys bound to struct fields: parse YAML into the fields with precise errors, dump the fields
+// back as commented YAML. Generic (knows nothing of sacfuse's options; job_config.cc fills it).
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace YAML {
+class Node;
+}
+
+namespace sacfuse {
+
+class ConfigSchema {
+ public:
+  // Each binder keeps a pointer to the field; the schema must not outlive the struct.
+  void AddString(const std::string& key, std::string* field, const std::string& doc,
+                 std::vector<std::string> allowed = {});
+  void AddDouble(const std::string& key, double* field, const std::string& doc);
+  void AddInt(const std::string& key, int* field, const std::string& doc);
+  void AddBool(const std::string& key, bool* field, const std::string& doc);
+  void AddDoubleList(const std::string& key, std::vector<double>* field, const std::string& doc);
+
+  // Fills the bound fields from `root` (a YAML mapping). Collects every problem: unknown keys (with the keys
+  // allowed there), wrong types, values not in `allowed`; each message is "<source>:<line>: <key>: <problem>".
+  // Throws ConfigError listing them all.
+  void Parse(const YAML::Node& root, const std::string& source) const;
+  // YAML text of the current field values, sections in registration order; comments carry the docs.
+  std::string Dump(bool with_comments) const;
+
+ private:
+  struct Entry {
+    std::string key;  // dotted path
+    std::string doc;
+    std::vector<std::string> allowed;
+    std::function<std::string(const YAML::Node&)> set;  // returns "" or a problem
+    std::function<std::string()> get;                    // YAML scalar/flow text
+  };
+  const Entry* Find(const std::string& key) const;
+  void ParseMap(const YAML::Node& node, const std::string& prefix, const std::string& source,
+                std::vector<std::string>* errors) const;
+  std::vector<Entry> entries_;
+};
+
+}  // namespace sacfuse

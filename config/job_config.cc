@@ -1,0 +1,113 @@
+#include "config/job_config.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <yaml-cpp/yaml.h>
+
+#include "config/config_schema.h"
+#include "config/option_check.h"
+#include "core/error.h"
+
+namespace sacfuse {
+namespace {
+
+// The single place where YAML keys meet struct fields. Docs name the unit and the rule.
+ConfigSchema MakeSchema(JobConfig* c) {
+  ConfigSchema s;
+  s.AddString("input.format", &c->input.format, "input kind: colmap (a COLMAP dense workspace)", {"colmap"});
+  s.AddString("input.path", &c->input.path, "input folder (relative to this file); required");
+  s.AddString("input.depth_type", &c->input.depth_type, "COLMAP depth maps to fuse: geometric | photometric",
+              {"geometric", "photometric"});
+  s.AddString("output.dir", &c->output.dir, "output folder (relative to this file)");
+  s.AddString("output.las_version", &c->output.las_version, "LAS version: 1.4 (point format 7) | 1.2 (format 3)",
+              {"1.4", "1.2"});
+  s.AddDouble("output.scale_m", &c->output.scale_m, "LAS coordinate quantum, metres; 10^k x {1, 0.5, 0.25}");
+  s.AddString("fusion.method", &c->fusion.method,
+              "fusion method: union (every valid depth pixel, no fusion: the 'before fusion' baseline)", {"union"});
+  s.AddInt("resources.threads", &c->resources.threads, "worker threads; 0 = all cores");
+  s.AddDouble("resources.memory_gb", &c->resources.memory_gb, "memory budget, GiB; > 0");
+  s.AddString("evaluation.reference", &c->evaluation.reference,
+              "reference LAS to score the result against; empty = no scoring");
+  s.AddString("evaluation.mask", &c->evaluation.mask, "evaluation mask PNG with JSON sidecar; empty = none");
+  s.AddDouble("evaluation.gsd_m", &c->evaluation.gsd_m, "ground sampling distance, metres; > 0");
+  s.AddDoubleList("evaluation.tau_gsd", &c->evaluation.tau_gsd, "F1 distance thresholds in GSD units; each > 0");
+  s.AddBool("evaluation.align", &c->evaluation.align, "robust ICP of the result onto the reference first");
+  s.AddString("log.level", &c->log.level, "log level: trace | debug | info | warn | error",
+              {"trace", "debug", "info", "warn", "error"});
+  return s;
+}
+
+std::string ResolvePath(const std::string& path, const std::string& base_dir) {
+  if (path.empty() || base_dir.empty()) return path;
+  std::filesystem::path p(path);
+  if (p.is_absolute()) return path;
+  return (std::filesystem::path(base_dir) / p).lexically_normal().string();
+}
+
+bool IsAllowedLasScale(double scale) {
+  if (!(scale > 0)) return false;
+  for (double mantissa : {1.0, 0.5, 0.25}) {
+    const double k = std::log10(scale / mantissa);
+    if (std::abs(k - std::round(k)) < 1e-9) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+void ValidateJobConfig(const JobConfig& c) {
+  OptionChecker check;
+  check.NotEmpty("input.path", c.input.path);
+  check.NotEmpty("output.dir", c.output.dir);
+  check.Require(IsAllowedLasScale(c.output.scale_m), "output.scale_m", OptionChecker::ToString(c.output.scale_m),
+                "must be 10^k x {1, 0.5, 0.25} (e.g. 0.001, 0.0025, 0.01)");
+  check.InRange("output.scale_m", c.output.scale_m, 1e-6, 1.0);
+  check.AtLeast("resources.threads", c.resources.threads, 0);
+  check.Greater("resources.memory_gb", c.resources.memory_gb, 0.0);
+  check.Greater("evaluation.gsd_m", c.evaluation.gsd_m, 0.0);
+  check.Require(!c.evaluation.tau_gsd.empty(), "evaluation.tau_gsd", "[]", "must list at least one threshold");
+  for (double t : c.evaluation.tau_gsd) check.Greater("evaluation.tau_gsd[]", t, 0.0);
+  check.ThrowIfFailed(c.source_file.empty() ? "config" : c.source_file);
+}
+
+JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
+  JobConfig config;
+  config.source_file = source_name;
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  MakeSchema(&config).Parse(root, source_name);
+  config.input.path = ResolvePath(config.input.path, base_dir);
+  config.output.dir = ResolvePath(config.output.dir, base_dir);
+  config.evaluation.reference = ResolvePath(config.evaluation.reference, base_dir);
+  config.evaluation.mask = ResolvePath(config.evaluation.mask, base_dir);
+  ValidateJobConfig(config);
+  return config;
+}
+
+JobConfig LoadJobConfig(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open the config file");
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto base = std::filesystem::absolute(path).parent_path().string();
+  return ParseJobConfig(text.str(), path, base);
+}
+
+std::string DumpJobConfig(const JobConfig& config, bool with_comments) {
+  JobConfig copy = config;
+  std::string header;
+  if (with_comments) {
+    header =
+        "# sacfuse run configuration. Every key is optional except input.path; the values shown are the defaults.\n"
+        "# Relative paths are resolved against the folder of this file.\n";
+  }
+  return header + MakeSchema(&copy).Dump(with_comments);
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,65 @@
+#pragma once
+// The options of one `sacfuse run`, as plain structs with defaults and units. The YAML keys are the struct paths
+// (e.g. `output.scale_m`); config/config_schema.cc binds each key to its field, documentation and rule, so the
+// parser, the validator and `--print-defaults` share one source of truth.
+#include <string>
+#include <vector>
+
+namespace sacfuse {
+
+struct InputOptions {
+  std::string format = "colmap";        // input kind: colmap (a COLMAP dense workspace)
+  std::string path;                     // workspace folder; relative paths are relative to the config file
+  std::string depth_type = "geometric";  // which COLMAP depth maps: geometric | photometric
+};
+
+struct OutputOptions {
+  std::string dir = "sacfuse_out";      // output folder (fused.las, logs, effective config, run report)
+  std::string las_version = "1.4";      // 1.4 (point format 7) | 1.2 (point format 3)
+  double scale_m = 0.001;               // LAS coordinate quantum, metres (10^k x {1, 0.5, 0.25})
+};
+
+struct FusionOptions {
+  // union: every valid depth pixel becomes a point (no fusion; the "before fusion" baseline).
+  std::string method = "union";
+};
+
+struct ResourceOptions {
+  int threads = 0;          // worker threads; 0 = all cores
+  double memory_gb = 4.0;   // memory budget, GiB
+};
+
+struct EvaluationOptions {
+  std::string reference;                   // reference LAS; when set, the run scores its result ("" = no scoring)
+  std::string mask;                        // evaluation mask PNG (+ JSON sidecar); "" = whole reference
+  double gsd_m = 0.10;                     // ground sampling distance, metres (thresholds are multiples of it)
+  std::vector<double> tau_gsd = {2.0, 5.0};  // F1 thresholds in GSD units
+  bool align = false;                      // robust ICP onto the reference before scoring
+};
+
+struct LogOptions {
+  std::string level = "info";   // trace | debug | info | warn | error
+};
+
+struct JobConfig {
+  InputOptions input;
+  OutputOptions output;
+  FusionOptions fusion;
+  ResourceOptions resources;
+  EvaluationOptions evaluation;
+  LogOptions log;
+  std::string source_file;  // the YAML file this came from ("" for defaults)
+};
+
+// Reads, type-checks and validates a YAML config. Unknown keys, wrong types and out-of-range values throw
+// ConfigError naming the file, line, key, value and rule (all problems at once). Relative paths are resolved
+// against the config file's folder.
+JobConfig LoadJobConfig(const std::string& path);
+// Parses YAML text (for tests); `source_name` appears in messages. Paths are resolved against `base_dir`.
+JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir);
+// Validation of values alone (after parsing or for configs built in code).
+void ValidateJobConfig(const JobConfig& config);
+// The config as YAML. With comments: every key documented with its default and unit (--print-defaults).
+std::string DumpJobConfig(const JobConfig& config, bool with_comments);
+
+}  // namespace sacfuse

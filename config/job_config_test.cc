@@ -1,0 +1,96 @@
+// Tests of YAML config parsing: defaults, paths, and the exact error messages users see.
+#include "config/job_config.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+
+namespace sacfuse {
+namespace {
+
+std::string ErrorOf(const std::string& yaml) {
+  try {
+    ParseJobConfig(yaml, "job.yaml", "/base");
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(JobConfigTest, MinimalConfigTakesDefaultsAndResolvesPaths) {
+  const JobConfig c = ParseJobConfig("input: {format: colmap, path: ws}\noutput: {dir: out}\n", "job.yaml", "/base");
+  EXPECT_EQ(c.input.path, "/base/ws");
+  EXPECT_EQ(c.output.dir, "/base/out");
+  EXPECT_EQ(c.output.las_version, "1.4");
+  EXPECT_DOUBLE_EQ(c.output.scale_m, 0.001);
+  EXPECT_EQ(c.fusion.method, "union");
+  EXPECT_EQ(c.evaluation.tau_gsd, (std::vector<double>{2.0, 5.0}));
+}
+
+TEST(JobConfigTest, AbsolutePathsStay) {
+  const JobConfig c = ParseJobConfig("input: {path: /data/ws}\n", "job.yaml", "/base");
+  EXPECT_EQ(c.input.path, "/data/ws");
+}
+
+TEST(JobConfigTest, UnknownKeyNamesKeyLineAndAlternatives) {
+  const std::string err = ErrorOf("input:\n  path: ws\n  fromat: colmap\n");
+  EXPECT_NE(err.find("job.yaml:3: input.fromat: unknown key"), std::string::npos) << err;
+  EXPECT_NE(err.find("format"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, UnknownSectionIsAnError) {
+  const std::string err = ErrorOf("input: {path: ws}\ntiling_typo: {a: 1}\n");
+  EXPECT_NE(err.find("job.yaml:2: tiling_typo: unknown key"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, WrongTypeNamesKeyLineAndValue) {
+  const std::string err = ErrorOf("input: {path: ws}\noutput:\n  scale_m: fine\n");
+  EXPECT_NE(err.find("job.yaml:3: output.scale_m: expected a number, got \"fine\""), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, SectionGivenAsScalarIsAnError) {
+  const std::string err = ErrorOf("input: ws\n");
+  EXPECT_NE(err.find("job.yaml:1: input: expected a mapping"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, EnumValueOutsideTheAllowedSet) {
+  const std::string err = ErrorOf("input: {path: ws, format: pmvs}\n");
+  EXPECT_NE(err.find("input.format: \"pmvs\" is not one of {colmap}"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, OutOfRangeValuesNameKeyValueAndRule) {
+  const std::string err = ErrorOf("input: {path: ws}\noutput: {scale_m: 0.003}\nresources: {memory_gb: -1}\n");
+  EXPECT_NE(err.find("output.scale_m = 0.003: must be 10^k x {1, 0.5, 0.25}"), std::string::npos) << err;
+  EXPECT_NE(err.find("resources.memory_gb = -1: must be > 0"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, MissingInputPathIsAnError) {
+  const std::string err = ErrorOf("output: {dir: out}\n");
+  EXPECT_NE(err.find("input.path is empty"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, BrokenYamlReportsTheLine) {
+  const std::string err = ErrorOf("input: {path: ws\noutput: [\n");
+  EXPECT_NE(err.find("not valid YAML"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, DumpWithCommentsParsesBackToTheSameConfig) {
+  JobConfig c;
+  c.input.path = "/x/ws";
+  c.output.scale_m = 0.0025;
+  c.evaluation.tau_gsd = {1.0, 3.5};
+  const std::string text = DumpJobConfig(c, true);
+  EXPECT_NE(text.find("# LAS coordinate quantum, metres"), std::string::npos) << text;
+  const JobConfig back = ParseJobConfig(text, "dump.yaml", "");
+  EXPECT_EQ(back.input.path, "/x/ws");
+  EXPECT_DOUBLE_EQ(back.output.scale_m, 0.0025);
+  EXPECT_EQ(back.evaluation.tau_gsd, (std::vector<double>{1.0, 3.5}));
+  EXPECT_EQ(DumpJobConfig(back, false), DumpJobConfig(c, false));
+}
+
+TEST(JobConfigTest, MissingFileIsAConfigError) {
+  EXPECT_THROW(LoadJobConfig("/nonexistent/sacfuse.yaml"), ConfigError);
+}
+
+}  // namespace
+}  // namespace sacfuse

@@ -1,0 +1,40 @@
+#pragma once
+// `sacfuse run`: read the configured input, fuse, write DIR/fused.las, the effective config and a run report.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "config/job_config.h"
+
+namespace sacfuse {
+
+struct ViewRunStats {
+  std::string name;
+  uint64_t input_pixels = 0;   // valid depth pixels read
+  uint64_t output_points = 0;  // points written with this view as source
+};
+
+struct RunSummary {
+  std::string las_path;
+  std::string effective_config_path;
+  std::string report_path;
+  std::string method;
+  uint64_t input_points = 0;   // valid depth pixels over all views
+  uint64_t output_points = 0;
+  std::vector<ViewRunStats> views;
+  double wall_seconds = 0.0;
+  double cpu_seconds = 0.0;
+  double peak_rss_mib = 0.0;
+};
+
+// Called as work proceeds: stage name, units done, units total.
+using RunProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
+
+// Runs one job. Throws InputError/ConfigError/Error with context; never leaves a partial fused.las.
+RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {});
+
+// Path of the fused cloud of a config.
+std::string FusedLasPath(const JobConfig& config);
+
+}  // namespace sacfuse

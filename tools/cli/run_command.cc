@@ -1,0 +1,65 @@
+#include <filesystem>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+#include <spdlog/spdlog.h>
+
+#include "config/job_config.h"
+#include "io/atomic_file.h"
+#include "jobs/run_fusion.h"
+#include "tools/cli/cli_support.h"
+#include "tools/cli/commands.h"
+#include "tools/cli/eval_runner.h"
+
+namespace sacfuse::cli {
+namespace {
+
+struct RunArgs {
+  std::string config_path;
+  bool print_defaults = false;
+  int threads = -1;
+};
+
+int RunCommand(const RunArgs& args) {
+  if (args.print_defaults) {
+    std::cout << DumpJobConfig(JobConfig{}, /*with_comments=*/true);
+    return kExitOk;
+  }
+  SetupLogging("info");
+  return RunGuarded([&] {
+    if (args.config_path.empty()) throw ConfigError("sacfuse run: a CONFIG file is required (or --print-defaults)");
+    JobConfig config = LoadJobConfig(args.config_path);
+    if (args.threads >= 0) config.resources.threads = args.threads;
+    SetupLogging(config.log.level, (std::filesystem::path(config.output.dir) / "sacfuse.log").string());
+    spdlog::info("effective configuration ({}):\n{}", args.config_path, DumpJobConfig(config, false));
+    ProgressPrinter progress;
+    const RunSummary summary = RunFusionJob(config, std::ref(progress));
+    std::cout << "fused cloud: " << summary.las_path << " (" << summary.output_points << " points, "
+              << summary.views.size() << " views, method " << summary.method << ")\n";
+    if (!config.evaluation.reference.empty()) {
+      EvalRequest request;
+      request.result_las = summary.las_path;
+      request.reference_las = config.evaluation.reference;
+      request.mask_png = config.evaluation.mask;
+      request.gsd_m = config.evaluation.gsd_m;
+      request.tau_gsd = config.evaluation.tau_gsd;
+      request.align = config.evaluation.align;
+      request.json_path = (std::filesystem::path(config.output.dir) / "eval.json").string();
+      RunEvaluation(request, std::cout);
+    }
+    return kExitOk;
+  });
+}
+
+}  // namespace
+
+void AddRunCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<RunArgs>();
+  auto* cmd = app.add_subcommand("run", "Fuse the depth maps named by a YAML config into DIR/fused.las");
+  cmd->add_option("CONFIG", args->config_path, "YAML config (see --print-defaults)");
+  cmd->add_flag("--print-defaults", args->print_defaults, "Print a complete commented config with every default");
+  cmd->add_option("--threads", args->threads, "Override resources.threads (0 = all cores)");
+  cmd->callback([args, exit_code] { *exit_code = RunCommand(*args); });
+}
+
+}  // namespace sacfuse::cli

@@ -1,0 +1,18 @@
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "jobs/version.h"
+#include "tools/cli/commands.h"
+
+namespace sacfuse::cli {
+
+void AddVersionCommand(CLI::App& app, int* exit_code) {
+  auto* cmd = app.add_subcommand("version", "Print the sacfuse version");
+  cmd->callback([exit_code] {
+    std::cout << VersionString() << "\n";
+    *exit_code = 0;
+  });
+}
+
+}  // namespace sacfuse::cli

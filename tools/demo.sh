@@ -1,0 +1,15 @@
+#!/usr/bin/env bash
+# One command for a fresh Debian machine: install dependencies, build, simulate the demo block, fuse it, score it.
+# Outputs go to build/demo/: block/ (the simulated COLMAP workspace), out/fused.las, out/eval.json.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+tools/install_deps.sh
+tools/build.sh
+bin=build/bin/sacfuse
+demo=build/demo
+if [ ! -f "$demo/block/metadata.json" ]; then
+  "$bin" simulate --preset small --seed 7 --out "$demo/block"
+fi
+"$bin" run tools/demo/demo.yaml
+echo
+echo "demo: fused cloud at $demo/out/fused.las; scores in $demo/out/eval.json"
