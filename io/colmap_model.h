@@ -52,6 +52,12 @@ struct ColmapModel {
   std::map<uint64_t, ColmapPoint3D> points3D;
 };
 
+// COLMAP camera model table (ids 0-10 as in COLMAP 3.8, plus 11 RAD_TAN_THIN_PRISM_FISHEYE of 3.9+).
+// Return -1 for an unknown model; name "" for an unknown id.
+int ColmapCameraModelId(const std::string& model_name);
+std::string ColmapCameraModelName(int model_id);
+int ColmapCameraModelNumParams(const std::string& model_name);
+
 // Reads DIR/{cameras,images,points3D}.bin, or the .txt files when the .bin are absent.
 // Throws InputError naming the file on any malformed or truncated content.
 ColmapModel ReadColmapModel(const std::string& dir);

@@ -1,0 +1,245 @@
+#include "io/colmap_workspace.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/colmap_array.h"
+
+namespace sacfuse {
+namespace {
+
+std::string JoinPath(const std::string& dir, const std::string& relative) {
+  if (dir.empty()) return relative;
+  return dir.back() == '/' ? dir + relative : dir + "/" + relative;
+}
+
+// The sparse file that ReadColmapModel used (for error messages).
+std::string SparseFile(const std::string& dir, const std::string& stem) {
+  const std::string bin = JoinPath(dir, "sparse/" + stem + ".bin");
+  std::error_code ec;
+  return std::filesystem::is_regular_file(bin, ec) ? bin : JoinPath(dir, "sparse/" + stem + ".txt");
+}
+
+std::string Quoted(const std::string& s) { return "\"" + s + "\""; }
+
+bool IsFisheye(const std::string& model) {
+  return model == "OPENCV_FISHEYE" || model == "SIMPLE_RADIAL_FISHEYE" || model == "RADIAL_FISHEYE" ||
+         model == "THIN_PRISM_FISHEYE" || model == "RAD_TAN_THIN_PRISM_FISHEYE";
+}
+
+// Pinhole intrinsics of a COLMAP camera without distortion. Every non-fisheye COLMAP model is
+// f/fx,fy then cx,cy then distortion terms (FOV's omega = 0 is the pinhole case too).
+PinholeCamera ToPinhole(const ColmapCamera& cam, const std::string& cameras_file, const std::string& image_name) {
+  const std::string who = "camera_id " + std::to_string(cam.camera_id) + " (" + cam.model + ", used by image " +
+                          Quoted(image_name) + ")";
+  const std::string hint = "; the workspace must be undistorted (run colmap image_undistorter)";
+  if (IsFisheye(cam.model)) {
+    throw InputError(cameras_file, who + ": fisheye models are not pinhole even without distortion" + hint);
+  }
+  const int num_params = ColmapCameraModelNumParams(cam.model);
+  if (num_params < 0) throw InputError(cameras_file, who + ": unknown camera model" + hint);
+  if (static_cast<int>(cam.params.size()) != num_params) {
+    throw InputError(cameras_file, who + ": expected " + std::to_string(num_params) + " parameters, got " +
+                                       std::to_string(cam.params.size()));
+  }
+  const bool single_focal = cam.model == "SIMPLE_PINHOLE" || cam.model == "SIMPLE_RADIAL" || cam.model == "RADIAL";
+  const size_t first_distortion = single_focal ? 3 : 4;
+  for (size_t k = first_distortion; k < cam.params.size(); ++k) {
+    if (cam.params[k] != 0.0) {
+      throw InputError(cameras_file, who + ": nonzero distortion parameter " + std::to_string(k - first_distortion + 1) +
+                                         " (" + std::to_string(cam.params[k]) + ")" + hint);
+    }
+  }
+  constexpr uint64_t kIntMax = static_cast<uint64_t>(std::numeric_limits<int>::max());
+  if (cam.width == 0 || cam.height == 0 || cam.width > kIntMax || cam.height > kIntMax) {
+    throw InputError(cameras_file, who + ": invalid size " + std::to_string(cam.width) + "x" + std::to_string(cam.height));
+  }
+  PinholeCamera pinhole;
+  pinhole.width = static_cast<int>(cam.width);
+  pinhole.height = static_cast<int>(cam.height);
+  pinhole.fx = cam.params[0];
+  pinhole.fy = single_focal ? cam.params[0] : cam.params[1];
+  pinhole.cx = cam.params[single_focal ? 1 : 2];
+  pinhole.cy = cam.params[single_focal ? 2 : 3];
+  if (!pinhole.IsValid() || !std::isfinite(pinhole.fx) || !std::isfinite(pinhole.fy) || !std::isfinite(pinhole.cx) ||
+      !std::isfinite(pinhole.cy)) {
+    throw InputError(cameras_file, who + ": focal length must be positive and all parameters finite");
+  }
+  return pinhole;
+}
+
+// fusion.cfg: one image name per line; surrounding whitespace and empty lines ignored (as COLMAP does).
+std::vector<std::pair<std::string, int>> ReadFusionConfig(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open");
+  std::vector<std::pair<std::string, int>> names;
+  std::string line;
+  int line_number = 0;
+  while (std::getline(in, line)) {
+    ++line_number;
+    const size_t begin = line.find_first_not_of(" \t\r\n");
+    if (begin == std::string::npos) continue;
+    const size_t end = line.find_last_not_of(" \t\r\n");
+    names.emplace_back(line.substr(begin, end - begin + 1), line_number);
+  }
+  return names;
+}
+
+// True when (w, h) is (W, H) scaled by one factor with each side rounded to within 1 px: the intervals of
+// factors compatible with each side must overlap.
+bool SizeMatchesAspect(int w, int h, int image_w, int image_h) {
+  if (w <= 0 || h <= 0 || w > image_w || h > image_h) return false;
+  const double lo = std::max((w - 1.0) / image_w, (h - 1.0) / image_h);
+  const double hi = std::min((w + 1.0) / image_w, (h + 1.0) / image_h);
+  return lo <= hi;
+}
+
+// Reads a dense array for `view`, checking its channel count and size; every error names the image.
+Raster<float> ReadDenseForView(const std::string& path, const View& view, int channels, const char* kind) {
+  const std::string for_image = " (" + std::string(kind) + " of image " + Quoted(view.name) + ")";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, std::string("missing ") + kind + for_image);
+  Raster<float> raster;
+  try {
+    raster = ReadColmapArray(path);
+  } catch (const InputError& e) {
+    std::string message = e.what();
+    const std::string prefix = e.file() + ": ";
+    if (message.compare(0, prefix.size(), prefix) == 0) message.erase(0, prefix.size());
+    throw InputError(e.file(), message + for_image);
+  }
+  if (raster.channels != channels) {
+    throw InputError(path, std::to_string(raster.channels) + " channels, expected " + std::to_string(channels) +
+                               for_image);
+  }
+  if (!SizeMatchesAspect(raster.width, raster.height, view.camera.width, view.camera.height)) {
+    throw InputError(path, "size " + std::to_string(raster.width) + "x" + std::to_string(raster.height) +
+                               " is not the image size " + std::to_string(view.camera.width) + "x" +
+                               std::to_string(view.camera.height) + " or a downscale of it with the same aspect" +
+                               for_image);
+  }
+  return raster;
+}
+
+std::string TypeSuffix(ColmapDepthType type) {
+  return type == ColmapDepthType::kGeometric ? ".geometric.bin" : ".photometric.bin";
+}
+
+}  // namespace
+
+ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_type)
+    : dir_(dir), depth_type_(depth_type), model_(ReadColmapModel(JoinPath(dir, "sparse"))) {
+  const std::string images_file = SparseFile(dir, "images");
+  std::map<std::string, size_t> by_name;
+  for (size_t i = 0; i < model_.images.size(); ++i) {
+    if (!by_name.emplace(model_.images[i].name, i).second) {
+      throw InputError(images_file, "image name " + Quoted(model_.images[i].name) + " appears more than once");
+    }
+  }
+  std::vector<size_t> order;
+  const std::string fusion_cfg = JoinPath(dir, "stereo/fusion.cfg");
+  std::error_code ec;
+  if (std::filesystem::exists(fusion_cfg, ec)) {
+    std::set<std::string> seen;
+    for (const auto& [name, line] : ReadFusionConfig(fusion_cfg)) {
+      const auto it = by_name.find(name);
+      if (it == by_name.end()) {
+        throw InputError(fusion_cfg, "line " + std::to_string(line) + ": image " + Quoted(name) +
+                                         " is not in the sparse model " + images_file);
+      }
+      if (!seen.insert(name).second) {
+        throw InputError(fusion_cfg, "line " + std::to_string(line) + ": image " + Quoted(name) + " is listed twice");
+      }
+      order.push_back(it->second);
+    }
+  } else {
+    for (size_t i = 0; i < model_.images.size(); ++i) order.push_back(i);
+  }
+  const std::string cameras_file = SparseFile(dir, "cameras");
+  views_.reserve(order.size());
+  for (const size_t i : order) {
+    const ColmapImage& img = model_.images[i];
+    View view;
+    view.index = static_cast<uint32_t>(views_.size());
+    view.name = img.name;
+    view.camera = ToPinhole(model_.cameras.at(img.camera_id), cameras_file, img.name);
+    view.cam_from_world.rotation = img.cam_from_world_rotation.normalized();
+    view.cam_from_world.translation = img.cam_from_world_translation;
+    views_.push_back(std::move(view));
+  }
+}
+
+std::string ColmapWorkspace::ImagePath(const View& view) const { return JoinPath(dir_, "images/" + view.name); }
+
+std::string ColmapWorkspace::DepthMapPath(const View& view) const {
+  return JoinPath(dir_, "stereo/depth_maps/" + view.name + TypeSuffix(depth_type_));
+}
+
+std::string ColmapWorkspace::NormalMapPath(const View& view) const {
+  return JoinPath(dir_, "stereo/normal_maps/" + view.name + TypeSuffix(depth_type_));
+}
+
+DepthMap ColmapWorkspace::ReadDepthMap(const View& view) const {
+  return ReadDenseForView(DepthMapPath(view), view, 1, "depth map");
+}
+
+NormalMap ColmapWorkspace::ReadNormalMap(const View& view) const {
+  return ReadDenseForView(NormalMapPath(view), view, 3, "normal map");
+}
+
+RgbImage ColmapWorkspace::ReadImage(const View& view) const {
+  const std::string path = ImagePath(view);
+  const std::string for_image = " (image " + Quoted(view.name) + ")";
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "missing image file" + for_image);
+  // COLMAP ignores EXIF orientation; so must we, or the raster would not match the camera.
+  cv::Mat bgr;
+  try {
+    bgr = cv::imread(path, cv::IMREAD_COLOR | cv::IMREAD_IGNORE_ORIENTATION);
+  } catch (const cv::Exception& e) {
+    throw InputError(path, std::string("cannot decode image: ") + e.what() + for_image);
+  }
+  if (bgr.empty()) throw InputError(path, "cannot decode image (unsupported or corrupt)" + for_image);
+  if (bgr.cols != view.camera.width || bgr.rows != view.camera.height) {
+    throw InputError(path, "image is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
+                               " but its camera is " + std::to_string(view.camera.width) + "x" +
+                               std::to_string(view.camera.height) + for_image);
+  }
+  RgbImage rgb(bgr.cols, bgr.rows, 3);
+  for (int row = 0; row < bgr.rows; ++row) {
+    const uint8_t* src = bgr.ptr<uint8_t>(row);
+    uint8_t* dst = &rgb.at(row, 0, 0);
+    for (int col = 0; col < bgr.cols; ++col) {
+      dst[3 * col + 0] = src[3 * col + 2];
+      dst[3 * col + 1] = src[3 * col + 1];
+      dst[3 * col + 2] = src[3 * col + 0];
+    }
+  }
+  return rgb;
+}
+
+void WriteColmapStereoConfigs(const std::string& workspace_dir, const std::vector<std::string>& image_names) {
+  const std::string fusion_path = JoinPath(workspace_dir, "stereo/fusion.cfg");
+  std::string fusion;
+  std::string patch_match;
+  for (const std::string& name : image_names) {
+    if (name.empty() || name.find_first_of("\r\n") != std::string::npos) {
+      throw Error(fusion_path + ": image name " + Quoted(name) + " cannot be written to a line-based config");
+    }
+    fusion += name + "\n";
+    patch_match += name + "\n__auto__, 20\n";
+  }
+  WriteFileAtomically(fusion_path, fusion);
+  WriteFileAtomically(JoinPath(workspace_dir, "stereo/patch-match.cfg"), patch_match);
+}
+
+}  // namespace sacfuse
