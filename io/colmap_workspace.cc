@@ -1,5 +1,7 @@
 #include "io/colmap_workspace.h"
 
+#include "io/colmap_consistency_graph.h"
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -166,7 +168,9 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
   }
   const std::string cameras_file = SparseFile(dir, "cameras");
   views_.reserve(order.size());
+  model_index_to_view_.assign(model_.images.size(), UINT32_MAX);
   for (const size_t i : order) {
+    model_index_to_view_[i] = static_cast<uint32_t>(views_.size());
     const ColmapImage& img = model_.images[i];
     View view;
     view.index = static_cast<uint32_t>(views_.size());
@@ -182,6 +186,38 @@ std::string ColmapWorkspace::ImagePath(const View& view) const { return JoinPath
 
 std::string ColmapWorkspace::DepthMapPath(const View& view) const {
   return JoinPath(dir_, "stereo/depth_maps/" + view.name + TypeSuffix(depth_type_));
+}
+
+std::string ColmapWorkspace::ConsistencyGraphPath(const View& view) const {
+  return JoinPath(dir_, "stereo/consistency_graphs/" + view.name + TypeSuffix(depth_type_));
+}
+
+bool ColmapWorkspace::HasConsistencyGraph(const View& view) const {
+  std::error_code ec;
+  return std::filesystem::is_regular_file(ConsistencyGraphPath(view), ec);
+}
+
+ConsistencyGraph ColmapWorkspace::ReadConsistencyGraph(const View& view) const {
+  const std::string path = ConsistencyGraphPath(view);
+  ConsistencyGraph raw = ReadColmapConsistencyGraph(path);
+  ConsistencyGraph graph;
+  graph.width = raw.width;
+  graph.height = raw.height;
+  graph.pixel_offsets.assign(raw.pixel_offsets.size(), 0);
+  graph.view_indices.reserve(raw.view_indices.size());
+  for (size_t p = 0; p + 1 < raw.pixel_offsets.size(); ++p) {
+    for (uint32_t k = raw.pixel_offsets[p]; k < raw.pixel_offsets[p + 1]; ++k) {
+      const uint32_t idx = raw.view_indices[k];
+      if (idx >= model_index_to_view_.size()) {
+        throw InputError(path, "image index " + std::to_string(idx) + " beyond the " +
+                                   std::to_string(model_index_to_view_.size()) + " images of the model (image " +
+                                   Quoted(view.name) + ")");
+      }
+      if (model_index_to_view_[idx] != UINT32_MAX) graph.view_indices.push_back(model_index_to_view_[idx]);
+    }
+    graph.pixel_offsets[p + 1] = static_cast<uint32_t>(graph.view_indices.size());
+  }
+  return graph;
 }
 
 std::string ColmapWorkspace::NormalMapPath(const View& view) const {

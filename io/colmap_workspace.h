@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/consistency_graph.h"
 #include "core/raster.h"
 #include "core/view.h"
 #include "io/colmap_model.h"
@@ -34,11 +35,18 @@ class ColmapWorkspace {
   NormalMap ReadNormalMap(const View& view) const;
   RgbImage ReadImage(const View& view) const;
 
+  // Dense-matching consistency (stereo/consistency_graphs/<name>.<type>.bin), when the input has it. COLMAP's
+  // image indices (images order of the sparse model) are mapped to view indices; images not used are dropped.
+  std::string ConsistencyGraphPath(const View& view) const;
+  bool HasConsistencyGraph(const View& view) const;
+  ConsistencyGraph ReadConsistencyGraph(const View& view) const;
+
  private:
   std::string dir_;
   ColmapDepthType depth_type_;
   ColmapModel model_;
   std::vector<View> views_;
+  std::vector<uint32_t> model_index_to_view_;  // images order of the sparse model -> view index (or UINT32_MAX)
 };
 
 // Writes stereo/fusion.cfg and stereo/patch-match.cfg for the given image names.

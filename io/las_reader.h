@@ -2,6 +2,10 @@
 // Streaming reader for uncompressed LAS 1.0-1.4, point formats 0-10 (LAZ is rejected with a clear message).
 // Validates the header against the file (signature, header size, offsets, record length vs format,
 // offset + count x length <= file size) and throws sacfuse::InputError naming the file on any inconsistency.
+// Tolerated, as laspy/LASlib do: extra header bytes, extra bytes per record (skipped), an overstated VLR count
+// when the VLRs read end exactly at the point data, and in LAS 1.4 a 64-bit count of 0 with a non-zero legacy
+// count (the legacy one is used; otherwise the 64-bit count wins). LAS 1.4 EVLRs are returned in header().vlrs
+// (payloads over 64 MiB, i.e. waveform data, are left empty).
 #include <cstdint>
 #include <memory>
 #include <string>

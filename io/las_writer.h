@@ -30,6 +30,11 @@ struct LasWriterOptions {
   // Extra VLRs written after the header (e.g. the CRS; issue 5 fills them).
   std::vector<LasVlr> vlrs;
   uint16_t global_encoding_extra_bits = 0;  // e.g. 0x10 (WKT) when a WKT VLR is given for LAS 1.4
+  // Point data record format; unset: 7 for LAS 1.4, 3 for LAS 1.2. LAS 1.2 takes 0-3, LAS 1.4 takes 0-3 and 6-8
+  // (waveform formats 4, 5, 9, 10 are not written). Fields a format lacks must be zero in the points written.
+  std::optional<int> point_format;
+  // Per-axis quantisation step overriding scale_m (round trips of third-party files); each 10^k x {1, 0.5, 0.25}.
+  std::optional<Eigen::Vector3d> scale_xyz;
 };
 
 class LasWriter : public PointSink {
@@ -42,7 +47,10 @@ class LasWriter : public PointSink {
 
   // Fused points: point source ID = view_index + 1, RGB scaled from 8 to 16 bit, return 1 of 1.
   void Write(const FusedPoint* points, size_t count) override;
-  // General points (reference clouds, round trips of third-party files).
+  // General points (reference clouds, round trips of third-party files), every field as given.
+  // Both throw sacfuse::Error naming the file and the point for a value the format cannot hold (a coordinate
+  // outside int32 after quantisation, view index >= 65535, classification > 31 in PDRF 0-3, a field the format
+  // lacks...); nothing is clamped, and a rejected chunk is not written at all (the writer stays usable).
   void WritePoints(const LasPoint* points, size_t count);
   // Patches the header, fsyncs, renames into place. Throws on I/O errors (and leaves no file at the path).
   void Close();

@@ -1,0 +1,374 @@
+#include "io/las_writer.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <limits>
+#include <unistd.h>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/las_format.h"
+
+namespace sacfuse {
+namespace lf = las_format;
+
+namespace {
+
+constexpr size_t kBufferRecords = 65536;  // records buffered before one fwrite
+constexpr double kAutoOffsetGrid = 1000.0;  // metres; the automatic offset is a multiple of this
+constexpr double kMaxScale = 1000.0;        // so that the automatic offset is a multiple of the scale
+
+const char* kAxisNames[3] = {"X", "Y", "Z"};
+
+std::string FormatDouble(double v) {
+  char text[64];
+  std::snprintf(text, sizeof(text), "%.10g", v);
+  return text;
+}
+
+LasPoint ToLasPoint(const FusedPoint& fused, const std::string& path) {
+  if (fused.view_index >= 65535u) {
+    throw Error(path + ": view index " + std::to_string(fused.view_index) +
+                " does not fit a LAS point source ID (view index + 1 must be <= 65535)");
+  }
+  LasPoint point;
+  point.xyz = fused.point_in_world;
+  for (int c = 0; c < 3; ++c) point.rgb[c] = static_cast<uint16_t>(fused.rgb[c] * 256u);
+  point.return_number = 1;
+  point.number_of_returns = 1;
+  point.point_source_id = static_cast<uint16_t>(fused.view_index + 1);
+  return point;
+}
+
+}  // namespace
+
+struct LasWriter::Impl {
+  std::string path;
+  std::string temp_path;
+  LasWriterOptions options;
+  int version_minor = 4;
+  int pdrf = 7;
+  size_t header_size = lf::kHeaderSize14;
+  size_t record_length = 36;
+  uint32_t point_offset = 0;
+  uint16_t global_encoding = 0;
+  uint32_t num_vlrs = 0;
+  Eigen::Vector3d scale = Eigen::Vector3d::Constant(0.001);
+  std::optional<Eigen::Vector3d> offset;
+  uint16_t creation_day = 0;
+  uint16_t creation_year = 0;
+
+  FILE* file = nullptr;
+  std::vector<uint8_t> buffer;  // kBufferRecords records
+  size_t buffered = 0;          // records in buffer
+  uint64_t count = 0;
+  std::array<uint64_t, 15> by_return = {};
+  std::array<int32_t, 3> stored_min = {};
+  std::array<int32_t, 3> stored_max = {};
+  bool closed = false;
+  bool failed = false;
+
+  void ValidateOptions();
+  void Open();
+  std::vector<uint8_t> BuildHeader(uint64_t evlr_start, uint32_t num_evlrs) const;
+  void WriteBytes(const uint8_t* data, size_t size);
+  void FlushBuffer();
+  void Discard();
+  void Fail(const std::string& message) {
+    failed = true;
+    throw Error(path + ": " + message);
+  }
+
+  // Checks (first pass) or stores (second pass) one point; throws naming the point on a value the format
+  // cannot hold.
+  void EncodeOne(const LasPoint& point, uint64_t index, const Eigen::Vector3d& use_offset, uint8_t* record) {
+    std::array<int32_t, 3> stored;
+    for (int a = 0; a < 3; ++a) {
+      if (!lf::Quantise(point.xyz[a], scale[a], use_offset[a], &stored[a])) {
+        throw Error(path + ": point " + std::to_string(index) + ": " + kAxisNames[a] + " = " +
+                    FormatDouble(point.xyz[a]) + " does not fit a LAS int32 at scale " + FormatDouble(scale[a]) +
+                    " and offset " + FormatDouble(use_offset[a]) + " (choose an offset near the data)");
+      }
+    }
+    std::memset(record, 0, record_length);
+    const std::string problem = lf::EncodePointRecord(point, stored, pdrf, record);
+    if (!problem.empty()) {
+      throw Error(path + ": point " + std::to_string(index) + ": " + problem);
+    }
+  }
+
+  Eigen::Vector3d OffsetFor(const LasPoint& first, uint64_t index) const {
+    if (offset) return *offset;
+    Eigen::Vector3d snapped;
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite(first.xyz[a])) {
+        throw Error(path + ": point " + std::to_string(index) + ": " + kAxisNames[a] + " is not finite");
+      }
+      snapped[a] = std::floor(first.xyz[a] / kAutoOffsetGrid) * kAutoOffsetGrid;
+    }
+    return snapped;
+  }
+
+  template <typename GetPoint>
+  void WriteChunk(size_t n, GetPoint get) {
+    if (closed) throw Error(path + ": write after Close()");
+    if (failed) throw Error(path + ": write after an earlier I/O error");
+    if (n == 0) return;
+    if (version_minor < 4 && count + n > std::numeric_limits<uint32_t>::max()) {
+      throw Error(path + ": LAS 1." + std::to_string(version_minor) + " holds at most 4294967295 points");
+    }
+    // Pass 1: validate the whole chunk, so that a rejected chunk leaves the file unchanged.
+    const Eigen::Vector3d use_offset = OffsetFor(get(0), count);
+    std::vector<uint8_t> scratch(record_length);
+    for (size_t i = 0; i < n; ++i) EncodeOne(get(i), count + i, use_offset, scratch.data());
+    // Pass 2: store.
+    offset = use_offset;
+    for (size_t i = 0; i < n; ++i) {
+      const LasPoint point = get(i);
+      uint8_t* record = buffer.data() + buffered * record_length;
+      EncodeOne(point, count, use_offset, record);
+      for (int a = 0; a < 3; ++a) {
+        const int32_t v = lf::GetI32(record + 4 * a);
+        if (count == 0) {
+          stored_min[a] = stored_max[a] = v;
+        } else {
+          stored_min[a] = std::min(stored_min[a], v);
+          stored_max[a] = std::max(stored_max[a], v);
+        }
+      }
+      if (point.return_number >= 1 && point.return_number <= 15) ++by_return[point.return_number - 1];
+      ++count;
+      if (++buffered == kBufferRecords) FlushBuffer();
+    }
+  }
+};
+
+void LasWriter::Impl::ValidateOptions() {
+  version_minor = options.version_minor;
+  if (version_minor != 4 && version_minor != 2) {
+    throw Error(path + ": LAS version 1." + std::to_string(version_minor) + " is not written (use 1.4 or 1.2)");
+  }
+  pdrf = options.point_format.value_or(version_minor == 4 ? 7 : 3);
+  const bool pdrf_ok = version_minor == 2 ? (pdrf >= 0 && pdrf <= 3)
+                                          : ((pdrf >= 0 && pdrf <= 3) || (pdrf >= 6 && pdrf <= 8));
+  if (!pdrf_ok) {
+    throw Error(path + ": point format " + std::to_string(pdrf) + " is not written for LAS 1." +
+                std::to_string(version_minor) + " (1.2: 0-3, 1.4: 0-3 or 6-8)");
+  }
+  header_size = version_minor == 4 ? lf::kHeaderSize14 : lf::kHeaderSize12;
+  record_length = lf::BaseRecordSize(pdrf);
+
+  const Eigen::Vector3d requested = options.scale_xyz.value_or(Eigen::Vector3d::Constant(options.scale_m));
+  for (int a = 0; a < 3; ++a) {
+    double canonical = 0.0;
+    if (!lf::CanonicalLasScale(requested[a], &canonical) || canonical > kMaxScale) {
+      throw Error(path + ": LAS scale " + FormatDouble(requested[a]) +
+                  " must be 10^k x {1, 0.5, 0.25} and at most 1000 (e.g. 0.001, 0.0025, 0.005, 0.01)");
+    }
+    scale[a] = canonical;
+  }
+  if (options.offset) {
+    for (int a = 0; a < 3; ++a) {
+      if (!std::isfinite((*options.offset)[a])) throw Error(path + ": LAS offset is not finite");
+    }
+    offset = options.offset;
+  }
+
+  const uint16_t allowed_bits = version_minor == 2 ? 0x1 : (0x1 | 0x8 | 0x10);
+  if ((options.global_encoding_extra_bits & ~allowed_bits) != 0) {
+    throw Error(path + ": global encoding bits 0x" + [&] {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "%x", options.global_encoding_extra_bits & ~allowed_bits);
+      return std::string(hex);
+    }() + " are not allowed for LAS 1." + std::to_string(version_minor));
+  }
+  global_encoding = options.global_encoding_extra_bits;
+
+  if (options.system_identifier.size() > lf::kIdFieldSize || options.generating_software.size() > lf::kIdFieldSize) {
+    throw Error(path + ": system identifier and generating software are limited to 32 characters");
+  }
+  uint64_t vlr_bytes = 0;
+  for (const LasVlr& vlr : options.vlrs) {
+    const std::string what = "VLR " + vlr.user_id + "/" + std::to_string(vlr.record_id);
+    if (vlr.user_id.size() > 16 || vlr.description.size() > 32) {
+      throw Error(path + ": " + what + ": user ID is limited to 16 characters, description to 32");
+    }
+    if (vlr.extended) {
+      if (version_minor < 4) throw Error(path + ": " + what + ": extended VLRs need LAS 1.4");
+      continue;
+    }
+    if (vlr.data.size() > 65535) {
+      throw Error(path + ": " + what + ": payload of " + std::to_string(vlr.data.size()) +
+                  " bytes does not fit a VLR (65535 at most; use an extended VLR in LAS 1.4)");
+    }
+    vlr_bytes += lf::kVlrHeaderSize + vlr.data.size();
+    ++num_vlrs;
+  }
+  if (header_size + vlr_bytes > std::numeric_limits<uint32_t>::max()) throw Error(path + ": VLRs too large");
+  point_offset = static_cast<uint32_t>(header_size + vlr_bytes);
+
+  std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  creation_day = static_cast<uint16_t>(utc.tm_yday + 1);
+  creation_year = static_cast<uint16_t>(utc.tm_year + 1900);
+}
+
+std::vector<uint8_t> LasWriter::Impl::BuildHeader(uint64_t evlr_start, uint32_t num_evlrs) const {
+  std::vector<uint8_t> h(header_size, 0);
+  std::memcpy(h.data(), "LASF", 4);
+  lf::PutU16(&h[lf::kOffFileSourceId], 0);  // aggregated sources: the point source IDs name the views
+  lf::PutU16(&h[lf::kOffGlobalEncoding], global_encoding);
+  h[lf::kOffVersionMajor] = 1;
+  h[lf::kOffVersionMinor] = static_cast<uint8_t>(version_minor);
+  lf::PutPaddedString(&h[lf::kOffSystemId], lf::kIdFieldSize, options.system_identifier);
+  lf::PutPaddedString(&h[lf::kOffSoftware], lf::kIdFieldSize, options.generating_software);
+  lf::PutU16(&h[lf::kOffCreationDay], creation_day);
+  lf::PutU16(&h[lf::kOffCreationYear], creation_year);
+  lf::PutU16(&h[lf::kOffHeaderSize], static_cast<uint16_t>(header_size));
+  lf::PutU32(&h[lf::kOffPointOffset], point_offset);
+  lf::PutU32(&h[lf::kOffNumVlrs], num_vlrs);
+  h[lf::kOffPdrf] = static_cast<uint8_t>(pdrf);
+  lf::PutU16(&h[lf::kOffRecordLength], static_cast<uint16_t>(record_length));
+  // Legacy counts: the only counts before 1.4; in 1.4 zero for PDRF >= 6 or counts beyond 32 bits.
+  const bool legacy = version_minor < 4 || (pdrf < 6 && count <= std::numeric_limits<uint32_t>::max());
+  if (legacy) {
+    lf::PutU32(&h[lf::kOffLegacyCount], static_cast<uint32_t>(count));
+    for (int r = 0; r < 5; ++r) lf::PutU32(&h[lf::kOffLegacyByReturn + 4 * r], static_cast<uint32_t>(by_return[r]));
+  }
+  const Eigen::Vector3d off = offset.value_or(Eigen::Vector3d::Zero());
+  for (int a = 0; a < 3; ++a) {
+    lf::PutF64(&h[lf::kOffScale + 8 * a], scale[a]);
+    lf::PutF64(&h[lf::kOffOffset + 8 * a], off[a]);
+    const double max = count == 0 ? 0.0 : lf::Dequantise(stored_max[a], scale[a], off[a]);
+    const double min = count == 0 ? 0.0 : lf::Dequantise(stored_min[a], scale[a], off[a]);
+    lf::PutF64(&h[lf::kOffBounds + 16 * a], max);  // max before min
+    lf::PutF64(&h[lf::kOffBounds + 16 * a + 8], min);
+  }
+  if (version_minor >= 4) {
+    lf::PutU64(&h[lf::kOffWaveformStart], 0);
+    lf::PutU64(&h[lf::kOffEvlrStart], evlr_start);
+    lf::PutU32(&h[lf::kOffEvlrCount], num_evlrs);
+    lf::PutU64(&h[lf::kOffCount64], count);
+    for (int r = 0; r < 15; ++r) lf::PutU64(&h[lf::kOffByReturn64 + 8 * r], by_return[r]);
+  }
+  return h;
+}
+
+void LasWriter::Impl::WriteBytes(const uint8_t* data, size_t size) {
+  if (size == 0) return;
+  if (std::fwrite(data, 1, size, file) != size) {
+    Fail(std::string("write to ") + temp_path + " failed (disk full?): " + std::strerror(errno));
+  }
+}
+
+void LasWriter::Impl::FlushBuffer() {
+  WriteBytes(buffer.data(), buffered * record_length);
+  buffered = 0;
+}
+
+void LasWriter::Impl::Open() {
+  temp_path = TemporaryPathFor(path);
+  file = std::fopen(temp_path.c_str(), "wb");
+  if (file == nullptr) {
+    throw Error(path + ": cannot create temporary file " + temp_path + ": " + std::strerror(errno));
+  }
+  try {
+    const std::vector<uint8_t> header = BuildHeader(0, 0);
+    WriteBytes(header.data(), header.size());
+    for (const LasVlr& vlr : options.vlrs) {
+      if (vlr.extended) continue;
+      uint8_t head[lf::kVlrHeaderSize] = {};
+      lf::PutPaddedString(head + 2, 16, vlr.user_id);
+      lf::PutU16(head + 18, vlr.record_id);
+      lf::PutU16(head + 20, static_cast<uint16_t>(vlr.data.size()));
+      lf::PutPaddedString(head + 22, 32, vlr.description);
+      WriteBytes(head, sizeof(head));
+      WriteBytes(vlr.data.data(), vlr.data.size());
+    }
+  } catch (...) {
+    Discard();
+    throw;
+  }
+  buffer.resize(kBufferRecords * record_length);
+}
+
+void LasWriter::Impl::Discard() {
+  if (file != nullptr) {
+    std::fclose(file);
+    file = nullptr;
+  }
+  if (!temp_path.empty()) std::remove(temp_path.c_str());
+}
+
+LasWriter::LasWriter(const std::string& path, const LasWriterOptions& options) : impl_(std::make_unique<Impl>()) {
+  impl_->path = path;
+  impl_->options = options;
+  impl_->ValidateOptions();
+  impl_->Open();
+}
+
+LasWriter::~LasWriter() {
+  if (!impl_->closed) impl_->Discard();
+}
+
+void LasWriter::Write(const FusedPoint* points, size_t count) {
+  const std::string& path = impl_->path;
+  impl_->WriteChunk(count, [&](size_t i) { return ToLasPoint(points[i], path); });
+}
+
+void LasWriter::WritePoints(const LasPoint* points, size_t count) {
+  impl_->WriteChunk(count, [&](size_t i) -> const LasPoint& { return points[i]; });
+}
+
+void LasWriter::Close() {
+  Impl& w = *impl_;
+  if (w.closed) return;
+  if (w.failed) {
+    w.Discard();
+    throw Error(w.path + ": not written: an earlier write failed");
+  }
+  try {
+    w.FlushBuffer();
+    // EVLRs follow the points (LAS 1.4 only; ValidateOptions rejected them otherwise).
+    const uint64_t evlr_start = w.point_offset + w.count * w.record_length;
+    uint32_t num_evlrs = 0;
+    for (const LasVlr& vlr : w.options.vlrs) {
+      if (!vlr.extended) continue;
+      uint8_t head[lf::kEvlrHeaderSize] = {};
+      lf::PutPaddedString(head + 2, 16, vlr.user_id);
+      lf::PutU16(head + 18, vlr.record_id);
+      lf::PutU64(head + 20, vlr.data.size());
+      lf::PutPaddedString(head + 28, 32, vlr.description);
+      w.WriteBytes(head, sizeof(head));
+      w.WriteBytes(vlr.data.data(), vlr.data.size());
+      ++num_evlrs;
+    }
+    const std::vector<uint8_t> header = w.BuildHeader(num_evlrs > 0 ? evlr_start : 0, num_evlrs);
+    if (std::fseek(w.file, 0, SEEK_SET) != 0) w.Fail(std::string("seek failed: ") + std::strerror(errno));
+    w.WriteBytes(header.data(), header.size());
+    if (std::fflush(w.file) != 0) w.Fail(std::string("flush failed (disk full?): ") + std::strerror(errno));
+    if (::fsync(::fileno(w.file)) != 0) w.Fail(std::string("fsync failed: ") + std::strerror(errno));
+    FILE* file = w.file;
+    w.file = nullptr;
+    if (std::fclose(file) != 0) w.Fail(std::string("close failed: ") + std::strerror(errno));
+    CommitTemporaryFile(w.temp_path, w.path);
+  } catch (...) {
+    w.failed = true;
+    w.Discard();
+    throw;
+  }
+  w.closed = true;
+  w.buffer.clear();
+  w.buffer.shrink_to_fit();
+}
+
+uint64_t LasWriter::num_points() const { return impl_->count; }
+
+const std::string& LasWriter::path() const { return impl_->path; }
+
+}  // namespace sacfuse
