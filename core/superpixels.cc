@@ -1,0 +1,430 @@
+#include "core/superpixels.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/ximgproc/slic.hpp>
+
+#include "core/error.h"
+
+namespace sacfuse {
+namespace {
+
+// OpenCV's default for enforceLabelConnectivity: fragments below 25% of a region are merged.
+constexpr int kMinElementPercent = 25;
+// Bumped whenever the segmentation changes for the same options (invalidates cached files).
+constexpr char kAlgorithmVersion[] = "sacfuse.superpixels.v1";
+
+struct Block {
+  cv::Rect rect;  // in depth-raster pixels
+};
+
+// Edges 0 = e0 < e1 < ... < ek = n of blocks of `block` pixels; a trailing remainder below `min_block` joins
+// the previous block.
+std::vector<int> BlockEdges(int n, int block, int min_block) {
+  std::vector<int> edges{0};
+  const int full = n / block;
+  if (full == 0) {
+    edges.push_back(n);
+    return edges;
+  }
+  for (int i = 1; i <= full; ++i) edges.push_back(i * block);
+  const int rest = n - full * block;
+  if (rest > 0) {
+    if (rest < min_block) {
+      edges.back() = n;
+    } else {
+      edges.push_back(n);
+    }
+  }
+  return edges;
+}
+
+int SlicAlgorithm(const std::string& name) {
+  if (name == "slic") return cv::ximgproc::SLIC;
+  if (name == "mslic") return cv::ximgproc::MSLIC;
+  return cv::ximgproc::SLICO;
+}
+
+void ValidateInputs(const RgbImage& image, const DepthMap& depth) {
+  if (depth.width <= 0 || depth.height <= 0) throw Error("ComputeSuperpixels: empty depth map");
+  if (depth.channels != 1 || depth.data.size() != depth.num_pixels()) {
+    throw Error("ComputeSuperpixels: depth map must have 1 channel and width*height values");
+  }
+  if (image.width <= 0 || image.height <= 0) throw Error("ComputeSuperpixels: empty colour image");
+  if ((image.channels != 3 && image.channels != 1) ||
+      image.data.size() != image.num_pixels() * static_cast<size_t>(image.channels)) {
+    throw Error("ComputeSuperpixels: colour image must have 3 (RGB) or 1 channel and width*height*channels values");
+  }
+  // Same aspect ratio up to the rounding of one pixel per dimension.
+  const double sx = static_cast<double>(image.width) / depth.width;
+  const double sy = static_cast<double>(image.height) / depth.height;
+  const double mismatch = std::abs(static_cast<double>(image.width) * depth.height -
+                                   static_cast<double>(image.height) * depth.width);
+  if (mismatch > std::max(sx, sy) * (depth.width + depth.height) + 1.0) {
+    std::ostringstream os;
+    os << "ComputeSuperpixels: colour image " << image.width << "x" << image.height
+       << " does not have the aspect ratio of the depth map " << depth.width << "x" << depth.height;
+    throw Error(os.str());
+  }
+}
+
+// The block's RGB pixels on the depth grid.
+cv::Mat BlockRgb(const RgbImage& image, const DepthMap& depth, const cv::Rect& r) {
+  cv::Mat full(image.height, image.width, CV_8UC(image.channels), const_cast<uint8_t*>(image.data.data()));
+  cv::Mat rgb;
+  if (image.width == depth.width && image.height == depth.height) {
+    rgb = full(r);
+  } else {
+    // Source window covering the block exactly when the scale is an integer, to within one source pixel
+    // otherwise.
+    const auto lo = [](int v, int num, int den) { return static_cast<int>(static_cast<int64_t>(v) * num / den); };
+    const auto hi = [](int v, int num, int den) {
+      return static_cast<int>((static_cast<int64_t>(v) * num + den - 1) / den);
+    };
+    const int c0 = lo(r.x, image.width, depth.width);
+    const int c1 = std::max(c0 + 1, std::min(image.width, hi(r.x + r.width, image.width, depth.width)));
+    const int r0 = lo(r.y, image.height, depth.height);
+    const int r1 = std::max(r0 + 1, std::min(image.height, hi(r.y + r.height, image.height, depth.height)));
+    const cv::Mat src = full(cv::Rect(c0, r0, c1 - c0, r1 - r0));
+    const bool shrink = src.cols >= r.width && src.rows >= r.height;
+    cv::resize(src, rgb, r.size(), 0, 0, shrink ? cv::INTER_AREA : cv::INTER_LINEAR);
+  }
+  if (image.channels == 1) {
+    cv::Mat colour;
+    cv::cvtColor(rgb, colour, cv::COLOR_GRAY2RGB);
+    return colour;
+  }
+  return rgb;
+}
+
+float MedianInPlace(float* begin, float* end) {
+  const size_t n = static_cast<size_t>(end - begin);
+  float* mid = begin + n / 2;
+  std::nth_element(begin, mid, end);
+  const double upper = *mid;
+  if (n % 2 == 1) return static_cast<float>(upper);
+  const double lower = *std::max_element(begin, mid);
+  return static_cast<float>(0.5 * (lower + upper));
+}
+
+// SLIC input channels of a block: 8-bit Lab, plus the weighted depth when depth_weight > 0.
+std::vector<cv::Mat> BlockChannels(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
+                                   const SuperpixelOptions& options) {
+  cv::Mat lab;
+  cv::cvtColor(BlockRgb(image, depth, r), lab, cv::COLOR_RGB2Lab);
+  std::vector<cv::Mat> channels;
+  cv::split(lab, channels);
+  if (options.depth_weight <= 0.0f) return channels;
+
+  std::vector<float> valid;
+  valid.reserve(static_cast<size_t>(r.area()));
+  for (int row = r.y; row < r.y + r.height; ++row) {
+    for (int col = r.x; col < r.x + r.width; ++col) {
+      const float d = depth.at(row, col);
+      if (IsValidDepth(d)) valid.push_back(d);
+    }
+  }
+  const double reference = valid.empty() ? 0.0 : MedianInPlace(valid.data(), valid.data() + valid.size());
+  cv::Mat depth_channel(r.height, r.width, CV_32F);
+  for (int row = 0; row < r.height; ++row) {
+    float* out = depth_channel.ptr<float>(row);
+    for (int col = 0; col < r.width; ++col) {
+      const float d = depth.at(r.y + row, r.x + col);
+      out[col] = IsValidDepth(d) ? static_cast<float>(options.depth_weight * (d - reference)) : 0.0f;
+    }
+  }
+  for (cv::Mat& c : channels) c.convertTo(c, CV_32F);
+  channels.push_back(depth_channel);
+  return channels;
+}
+
+// Raw SLIC labels of one block (CV_32S, arbitrary non-negative ids).
+cv::Mat SegmentBlock(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
+                     const SuperpixelOptions& options) {
+  if (r.width < options.region_size_px || r.height < options.region_size_px) {
+    return cv::Mat(r.size(), CV_32S, cv::Scalar(0));  // too small for SLIC seeds: one cluster
+  }
+  const std::vector<cv::Mat> channels = BlockChannels(image, depth, r, options);
+  cv::Mat labels;
+  // Single-threaded arena: OpenCV's SLIC reduces float sums with TBB, whose split order (and so the rounding)
+  // would otherwise depend on the number of threads.
+  tbb::task_arena arena(1);
+  arena.execute([&] {
+    cv::Ptr<cv::ximgproc::SuperpixelSLIC> slic = cv::ximgproc::createSuperpixelSLIC(
+        channels, SlicAlgorithm(options.algorithm), options.region_size_px, options.ruler);
+    slic->iterate(options.iterations);
+    // MSLIC already enforces connectivity (13%) inside every iteration.
+    if (options.algorithm != "mslic") slic->enforceLabelConnectivity(kMinElementPercent);
+    slic->getLabels(labels);
+  });
+  return labels;
+}
+
+// Segments block `r`, writes block-local dense labels (first-appearance order) into `out_labels` (the global
+// row-major raster) and returns the block's clusters.
+std::vector<SuperpixelCluster> ProcessBlock(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
+                                            const SuperpixelOptions& options, int32_t* out_labels) {
+  cv::Mat raw;
+  try {
+    raw = SegmentBlock(image, depth, r, options);
+  } catch (const cv::Exception& e) {
+    std::ostringstream os;
+    os << "ComputeSuperpixels: OpenCV failed on block x=" << r.x << " y=" << r.y << " " << r.width << "x"
+       << r.height << ": " << e.what();
+    throw Error(os.str());
+  }
+  double min_label = 0, max_label = 0;
+  cv::minMaxLoc(raw, &min_label, &max_label);
+  if (min_label < 0 || raw.rows != r.height || raw.cols != r.width) {
+    throw Error("ComputeSuperpixels: SLIC returned invalid labels");
+  }
+  std::vector<int32_t> remap(static_cast<size_t>(max_label) + 1, -1);
+  int32_t count = 0;
+  struct Sums {
+    double col = 0, row = 0;
+    uint32_t pixels = 0, valid = 0;
+  };
+  std::vector<Sums> sums;
+  const size_t stride = static_cast<size_t>(depth.width);
+  for (int row = 0; row < r.height; ++row) {
+    const int32_t* in = raw.ptr<int32_t>(row);
+    int32_t* out = out_labels + static_cast<size_t>(r.y + row) * stride + r.x;
+    const float* d = &depth.data[static_cast<size_t>(r.y + row) * stride + r.x];
+    for (int col = 0; col < r.width; ++col) {
+      int32_t& local = remap[static_cast<size_t>(in[col])];
+      if (local < 0) {
+        local = count++;
+        sums.emplace_back();
+      }
+      out[col] = local;
+      Sums& s = sums[static_cast<size_t>(local)];
+      s.col += r.x + col + 0.5;
+      s.row += r.y + row + 0.5;
+      ++s.pixels;
+      if (IsValidDepth(d[col])) ++s.valid;
+    }
+  }
+  // Valid depths grouped by cluster, then per-cluster medians.
+  std::vector<size_t> offset(sums.size() + 1, 0);
+  for (size_t i = 0; i < sums.size(); ++i) offset[i + 1] = offset[i] + sums[i].valid;
+  std::vector<float> values(offset.back());
+  std::vector<size_t> fill(offset.begin(), offset.end() - 1);
+  for (int row = 0; row < r.height; ++row) {
+    const int32_t* lab = out_labels + static_cast<size_t>(r.y + row) * stride + r.x;
+    const float* d = &depth.data[static_cast<size_t>(r.y + row) * stride + r.x];
+    for (int col = 0; col < r.width; ++col) {
+      if (IsValidDepth(d[col])) values[fill[static_cast<size_t>(lab[col])]++] = d[col];
+    }
+  }
+  std::vector<SuperpixelCluster> clusters(sums.size());
+  for (size_t i = 0; i < sums.size(); ++i) {
+    SuperpixelCluster& c = clusters[i];
+    c.pixel_count = sums[i].pixels;
+    c.valid_count = sums[i].valid;
+    c.centroid_col = static_cast<float>(sums[i].col / sums[i].pixels);
+    c.centroid_row = static_cast<float>(sums[i].row / sums[i].pixels);
+    if (c.valid_count > 0 && c.valid_count >= static_cast<uint32_t>(options.min_valid_pixels)) {
+      c.depth_m = MedianInPlace(values.data() + offset[i], values.data() + offset[i + 1]);
+    }
+  }
+  return clusters;
+}
+
+// FNV-1a 64 over a fixed little-endian encoding.
+class Fnv1a {
+ public:
+  void Bytes(const void* data, size_t n) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < n; ++i) {
+      hash_ ^= p[i];
+      hash_ *= 1099511628211ull;
+    }
+  }
+  void U32(uint32_t v) {
+    const unsigned char b[4] = {static_cast<unsigned char>(v), static_cast<unsigned char>(v >> 8),
+                                static_cast<unsigned char>(v >> 16), static_cast<unsigned char>(v >> 24)};
+    Bytes(b, 4);
+  }
+  void I32(int32_t v) { U32(static_cast<uint32_t>(v)); }
+  void F32(float v) {
+    if (v == 0.0f) v = 0.0f;  // -0 == +0
+    uint32_t bits;
+    std::memcpy(&bits, &v, 4);
+    U32(bits);
+  }
+  void Str(const std::string& s) {
+    U32(static_cast<uint32_t>(s.size()));
+    Bytes(s.data(), s.size());
+  }
+  uint64_t value() const { return hash_; }
+
+ private:
+  uint64_t hash_ = 14695981039346656037ull;
+};
+
+template <typename T>
+std::string Rule(const std::string& field, const T& value, const std::string& rule) {
+  std::ostringstream os;
+  os << "superpixels." << field << " = " << value << ": " << rule;
+  return os.str();
+}
+
+}  // namespace
+
+void ValidateSuperpixelOptions(const SuperpixelOptions& o) {
+  std::vector<std::string> errors;
+  if (o.region_size_px < 2 || o.region_size_px > 128) {
+    errors.push_back(Rule("region_size_px", o.region_size_px, "must be in [2, 128]"));
+  }
+  if (!(o.ruler > 0.0f) || !std::isfinite(o.ruler)) errors.push_back(Rule("ruler", o.ruler, "must be > 0"));
+  if (o.iterations < 1 || o.iterations > 100) {
+    errors.push_back(Rule("iterations", o.iterations, "must be in [1, 100]"));
+  }
+  if (o.algorithm != "slic" && o.algorithm != "slico" && o.algorithm != "mslic") {
+    errors.push_back(Rule("algorithm", o.algorithm, "must be one of slic, slico, mslic"));
+  }
+  if (o.block_size_px < 2 * std::max(o.region_size_px, 1)) {
+    errors.push_back(Rule("block_size_px", o.block_size_px,
+                          "must be >= 2 * region_size_px (" + std::to_string(2 * o.region_size_px) + ")"));
+  }
+  if (!(o.depth_weight >= 0.0f) || !std::isfinite(o.depth_weight)) {
+    errors.push_back(Rule("depth_weight", o.depth_weight, "must be >= 0"));
+  }
+  if (o.min_valid_pixels < 1) errors.push_back(Rule("min_valid_pixels", o.min_valid_pixels, "must be >= 1"));
+  if (errors.empty()) return;
+  std::string message;
+  for (const std::string& e : errors) message += (message.empty() ? "" : "; ") + e;
+  throw ConfigError(message);
+}
+
+SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, const SuperpixelOptions& options) {
+  ValidateSuperpixelOptions(options);
+  ValidateInputs(image, depth);
+
+  SuperpixelMap map;
+  map.width = depth.width;
+  map.height = depth.height;
+  map.labels.assign(depth.num_pixels(), 0);
+
+  const int min_block = 2 * options.region_size_px;
+  const std::vector<int> xs = BlockEdges(depth.width, options.block_size_px, min_block);
+  const std::vector<int> ys = BlockEdges(depth.height, options.block_size_px, min_block);
+  std::vector<Block> blocks;
+  for (size_t by = 0; by + 1 < ys.size(); ++by) {
+    for (size_t bx = 0; bx + 1 < xs.size(); ++bx) {
+      blocks.push_back({cv::Rect(xs[bx], ys[by], xs[bx + 1] - xs[bx], ys[by + 1] - ys[by])});
+    }
+  }
+
+  std::vector<std::vector<SuperpixelCluster>> block_clusters(blocks.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      block_clusters[b] = ProcessBlock(image, depth, blocks[b].rect, options, map.labels.data());
+    }
+  });
+
+  // Global numbering: row-major block order.
+  std::vector<int32_t> first(blocks.size(), 0);
+  size_t total = 0;
+  for (size_t b = 0; b < blocks.size(); ++b) {
+    first[b] = static_cast<int32_t>(total);
+    total += block_clusters[b].size();
+  }
+  map.clusters.reserve(total);
+  for (auto& clusters : block_clusters) {
+    map.clusters.insert(map.clusters.end(), clusters.begin(), clusters.end());
+    std::vector<SuperpixelCluster>().swap(clusters);
+  }
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    for (size_t b = range.begin(); b != range.end(); ++b) {
+      if (first[b] == 0) continue;
+      const cv::Rect& r = blocks[b].rect;
+      for (int row = r.y; row < r.y + r.height; ++row) {
+        int32_t* out = map.labels.data() + static_cast<size_t>(row) * map.width + r.x;
+        for (int col = 0; col < r.width; ++col) out[col] += first[b];
+      }
+    }
+  });
+  return map;
+}
+
+std::vector<std::vector<uint32_t>> ClusterAdjacency(const SuperpixelMap& map) {
+  const size_t n = map.clusters.size();
+  if (map.width < 0 || map.height < 0 ||
+      map.labels.size() != static_cast<size_t>(map.width) * static_cast<size_t>(map.height)) {
+    throw Error("ClusterAdjacency: labels do not match width x height");
+  }
+  constexpr int kBandRows = 64;
+  const int bands = (map.height + kBandRows - 1) / kBandRows;
+  std::vector<std::vector<uint64_t>> band_pairs(static_cast<size_t>(bands));
+  const auto key = [](uint32_t a, uint32_t b) {
+    return a < b ? (static_cast<uint64_t>(a) << 32) | b : (static_cast<uint64_t>(b) << 32) | a;
+  };
+  tbb::parallel_for(0, bands, [&](int band) {
+    std::vector<uint64_t>& pairs = band_pairs[static_cast<size_t>(band)];
+    const int row_end = std::min(map.height, (band + 1) * kBandRows);
+    uint64_t last = ~0ull;
+    const auto add = [&](int32_t a, int32_t b) {
+      if (a == b) return;
+      const uint64_t k = key(static_cast<uint32_t>(a), static_cast<uint32_t>(b));
+      if (k != last) pairs.push_back(k);
+      last = k;
+    };
+    for (int row = band * kBandRows; row < row_end; ++row) {
+      const int32_t* here = map.labels.data() + static_cast<size_t>(row) * map.width;
+      const int32_t* below = row + 1 < map.height ? here + map.width : nullptr;
+      for (int col = 0; col < map.width; ++col) {
+        if (here[col] < 0 || static_cast<size_t>(here[col]) >= n) {
+          throw Error("ClusterAdjacency: label " + std::to_string(here[col]) + " out of range at row " +
+                      std::to_string(row) + ", col " + std::to_string(col));
+        }
+        if (col + 1 < map.width) add(here[col], here[col + 1]);
+        if (below != nullptr) add(here[col], below[col]);
+      }
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  });
+  std::vector<uint64_t> all;
+  for (auto& pairs : band_pairs) {
+    all.insert(all.end(), pairs.begin(), pairs.end());
+    std::vector<uint64_t>().swap(pairs);
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+
+  std::vector<std::vector<uint32_t>> adjacency(n);
+  for (uint64_t k : all) {
+    const auto a = static_cast<uint32_t>(k >> 32);
+    const auto b = static_cast<uint32_t>(k & 0xffffffffu);
+    adjacency[a].push_back(b);
+    adjacency[b].push_back(a);
+  }
+  // Pairs are sorted by (a, b): each list received its larger neighbours in order but smaller ones interleaved.
+  for (auto& list : adjacency) std::sort(list.begin(), list.end());
+  return adjacency;
+}
+
+uint64_t SuperpixelOptionsHash(const SuperpixelOptions& o) {
+  Fnv1a h;
+  h.Str(kAlgorithmVersion);
+  h.I32(o.region_size_px);
+  h.F32(o.ruler);
+  h.I32(o.iterations);
+  h.Str(o.algorithm);
+  h.I32(o.block_size_px);
+  h.F32(o.depth_weight);
+  h.I32(o.min_valid_pixels);
+  return h.value();
+}
+
+}  // namespace sacfuse

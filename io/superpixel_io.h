@@ -1,0 +1,37 @@
+#pragma once
+// A view's superpixels on disk, so later runs and tiles reuse them instead of re-running SLIC.
+//
+// Binary layout, all little-endian:
+//   char[8] "SACSPX01", u32 width, u32 height, u64 num_clusters, u64 options_hash   (32-byte header)
+//   int32 labels[height][width]   row-major, so a row window is one contiguous seek + read
+//   per cluster: f32 centroid_col, f32 centroid_row, f32 depth_m, u32 pixel_count, u32 valid_count  (20 bytes)
+// The file length must match exactly. options_hash is SuperpixelOptionsHash() of the options that produced
+// the map: compare it before reusing a file.
+#include <cstdint>
+#include <string>
+
+#include "core/superpixels.h"
+
+namespace sacfuse {
+
+// Atomic (temp file, fsync, rename); creates missing parent folders. Throws Error when `map` is inconsistent
+// (labels size or range) or the file cannot be written.
+void WriteSuperpixels(const std::string& path, const SuperpixelMap& map, uint64_t options_hash);
+
+struct SuperpixelFileInfo {
+  int width = 0, height = 0;
+  uint64_t num_clusters = 0, options_hash = 0;
+};
+// Header only (also checks the file length). Throws InputError naming the file.
+SuperpixelFileInfo ReadSuperpixelInfo(const std::string& path);
+
+// The whole map. Validates magic, sizes vs file length, every label in range, cluster pixel counts against the
+// labels and finite cluster values; throws InputError naming the file.
+SuperpixelMap ReadSuperpixels(const std::string& path);
+
+// Rows [row_begin, row_end) of the label raster (width x (row_end - row_begin); row r of the result is image
+// row row_begin + r) plus the whole cluster table (centroids stay in full-image coordinates). Labels read are
+// range-checked. Throws InputError for a bad file, Error for a bad row range.
+SuperpixelMap ReadSuperpixelRows(const std::string& path, int row_begin, int row_end);
+
+}  // namespace sacfuse

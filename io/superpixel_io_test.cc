@@ -1,0 +1,220 @@
+#include "io/superpixel_io.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "tests/support/test_support.h"
+
+namespace sacfuse {
+namespace {
+
+// A consistent map: 8x8-ish cells (with irregular last row/column) and statistics matching the labels.
+SuperpixelMap MakeMap(int width, int height) {
+  SuperpixelMap map;
+  map.width = width;
+  map.height = height;
+  const int cells_x = (width + 7) / 8;
+  map.clusters.resize(static_cast<size_t>(cells_x) * ((height + 7) / 8));
+  map.labels.resize(static_cast<size_t>(width) * height);
+  std::vector<double> sc(map.clusters.size(), 0), sr(map.clusters.size(), 0);
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) {
+      const int32_t l = (r / 8) * cells_x + c / 8;
+      map.labels[static_cast<size_t>(r) * width + c] = l;
+      ++map.clusters[l].pixel_count;
+      if ((r + c) % 4 != 0) ++map.clusters[l].valid_count;
+      sc[l] += c + 0.5;
+      sr[l] += r + 0.5;
+    }
+  }
+  for (size_t i = 0; i < map.clusters.size(); ++i) {
+    SuperpixelCluster& cl = map.clusters[i];
+    cl.centroid_col = static_cast<float>(sc[i] / cl.pixel_count);
+    cl.centroid_row = static_cast<float>(sr[i] / cl.pixel_count);
+    cl.depth_m = i % 5 == 0 ? 0.0f : 12.5f + 0.25f * i;
+  }
+  return map;
+}
+
+void ExpectClustersEqual(const std::vector<SuperpixelCluster>& a, const std::vector<SuperpixelCluster>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].centroid_col, b[i].centroid_col) << i;
+    EXPECT_EQ(a[i].centroid_row, b[i].centroid_row) << i;
+    EXPECT_EQ(a[i].depth_m, b[i].depth_m) << i;
+    EXPECT_EQ(a[i].pixel_count, b[i].pixel_count) << i;
+    EXPECT_EQ(a[i].valid_count, b[i].valid_count) << i;
+  }
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void Spit(const std::string& path, const std::string& bytes) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+// Expects every reader to throw InputError naming `path`.
+void ExpectAllReadersReject(const std::string& path, const std::string& why) {
+  SCOPED_TRACE(why);
+  const auto check = [&](const auto& read) {
+    try {
+      read();
+      ADD_FAILURE() << "expected InputError";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), path);
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    }
+  };
+  check([&] { ReadSuperpixels(path); });
+  check([&] { ReadSuperpixelRows(path, 0, 1); });
+}
+
+TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
+  testing::TempDir dir;
+  const std::string path = (dir / "sub" / "view_0007.spx").string();
+  const SuperpixelMap map = MakeMap(37, 29);
+  WriteSuperpixels(path, map, 0x0123456789abcdefull);
+
+  const SuperpixelFileInfo info = ReadSuperpixelInfo(path);
+  EXPECT_EQ(info.width, 37);
+  EXPECT_EQ(info.height, 29);
+  EXPECT_EQ(info.num_clusters, map.clusters.size());
+  EXPECT_EQ(info.options_hash, 0x0123456789abcdefull);
+  EXPECT_EQ(std::filesystem::file_size(path), 32u + 37u * 29u * 4u + map.clusters.size() * 20u);
+
+  const SuperpixelMap full = ReadSuperpixels(path);
+  EXPECT_EQ(full.width, map.width);
+  EXPECT_EQ(full.height, map.height);
+  EXPECT_EQ(full.labels, map.labels);
+  ExpectClustersEqual(full.clusters, map.clusters);
+
+  for (const auto& window : std::vector<std::pair<int, int>>{{0, 29}, {5, 17}, {28, 29}, {0, 1}, {11, 11}}) {
+    SCOPED_TRACE(std::to_string(window.first) + ".." + std::to_string(window.second));
+    const SuperpixelMap rows = ReadSuperpixelRows(path, window.first, window.second);
+    EXPECT_EQ(rows.width, 37);
+    EXPECT_EQ(rows.height, window.second - window.first);
+    const std::vector<int32_t> slice(map.labels.begin() + window.first * 37, map.labels.begin() + window.second * 37);
+    EXPECT_EQ(rows.labels, slice);
+    ExpectClustersEqual(rows.clusters, map.clusters);
+  }
+  EXPECT_THROW(ReadSuperpixelRows(path, 5, 30), Error);
+  EXPECT_THROW(ReadSuperpixelRows(path, -1, 3), Error);
+  EXPECT_THROW(ReadSuperpixelRows(path, 6, 5), Error);
+
+  // No temporary files left behind; rewriting replaces the file.
+  WriteSuperpixels(path, MakeMap(9, 9), 7);
+  EXPECT_EQ(ReadSuperpixelInfo(path).width, 9);
+  EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "sub"), std::filesystem::directory_iterator()), 1);
+}
+
+TEST(SuperpixelIoTest, OnDiskLayoutIsLittleEndian) {
+  testing::TempDir dir;
+  const std::string path = (dir / "a.spx").string();
+  SuperpixelMap map = MakeMap(16, 8);  // two clusters: labels 0 and 1
+  WriteSuperpixels(path, map, 0x1122334455667788ull);
+  const std::string bytes = Slurp(path);
+  ASSERT_EQ(bytes.size(), 32u + 16 * 8 * 4 + 2 * 20);
+  EXPECT_EQ(bytes.substr(0, 8), "SACSPX01");
+  EXPECT_EQ(bytes.substr(8, 4), std::string("\x10\0\0\0", 4));
+  EXPECT_EQ(bytes.substr(12, 4), std::string("\x08\0\0\0", 4));
+  EXPECT_EQ(bytes.substr(16, 8), std::string("\x02\0\0\0\0\0\0\0", 8));
+  EXPECT_EQ(bytes.substr(24, 8), std::string("\x88\x77\x66\x55\x44\x33\x22\x11", 8));
+  EXPECT_EQ(bytes.substr(32 + 8 * 4, 4), std::string("\x01\0\0\0", 4));  // row 0, col 8 -> cluster 1
+  EXPECT_EQ(bytes.substr(32 + 16 * 8 * 4 + 20 + 12, 4), std::string("\x40\0\0\0", 4));  // cluster 1: 64 pixels
+}
+
+TEST(SuperpixelIoTest, EmptyMapRoundTrips) {
+  testing::TempDir dir;
+  const std::string path = (dir / "empty.spx").string();
+  WriteSuperpixels(path, SuperpixelMap{}, 1);
+  const SuperpixelMap map = ReadSuperpixels(path);
+  EXPECT_EQ(map.width, 0);
+  EXPECT_TRUE(map.labels.empty());
+  EXPECT_TRUE(map.clusters.empty());
+}
+
+TEST(SuperpixelIoTest, CorruptOrTruncatedFilesAreRejectedNamingTheFile) {
+  testing::TempDir dir;
+  const std::string good_path = (dir / "good.spx").string();
+  WriteSuperpixels(good_path, MakeMap(24, 20), 3);
+  const std::string good = Slurp(good_path);
+  const std::string path = (dir / "bad.spx").string();
+  const size_t table = 32 + 24 * 20 * 4;
+
+  ExpectAllReadersReject((dir / "missing.spx").string(), "missing file");
+
+  std::string bytes = good;
+  bytes[3] = 'X';
+  Spit(path, bytes);
+  ExpectAllReadersReject(path, "bad magic");
+  EXPECT_THROW(ReadSuperpixelInfo(path), InputError);
+
+  Spit(path, good.substr(0, good.size() - 1));
+  ExpectAllReadersReject(path, "truncated by one byte");
+  EXPECT_THROW(ReadSuperpixelInfo(path), InputError);
+
+  Spit(path, good.substr(0, 20));
+  ExpectAllReadersReject(path, "truncated header");
+
+  Spit(path, good + "x");
+  ExpectAllReadersReject(path, "trailing garbage");
+
+  bytes = good;
+  bytes[8] = '\xff';  // width 255 + ... : sizes no longer match the length
+  Spit(path, bytes);
+  ExpectAllReadersReject(path, "wrong width");
+
+  bytes = good;
+  bytes[16] = '\0';  // zero clusters for a non-empty raster (length checked first: fix it up by hand)
+  bytes.resize(table);
+  Spit(path, bytes);
+  ExpectAllReadersReject(path, "no clusters");
+
+  bytes = good;
+  bytes[32 + 4 * 3] = '\x7f';  // row 0, col 3: label 127 > number of clusters
+  Spit(path, bytes);
+  ExpectAllReadersReject(path, "label out of range");
+  EXPECT_NO_THROW(ReadSuperpixelRows(path, 1, 20)) << "only the rows read are range-checked";
+
+  bytes = good;
+  bytes[32 + 4 * 3] = '\x01';  // row 0, col 3 moved to cluster 1: table counts disagree with the labels
+  Spit(path, bytes);
+  EXPECT_THROW(ReadSuperpixels(path), InputError);
+
+  bytes = good;
+  bytes[table + 12] = '\x05';  // cluster 0 pixel count: sum no longer matches the raster
+  Spit(path, bytes);
+  ExpectAllReadersReject(path, "pixel counts");
+
+  bytes = good;
+  bytes.replace(table + 8, 4, std::string("\x00\x00\xc0\x7f", 4));  // cluster 0 depth NaN
+  Spit(path, bytes);
+  ExpectAllReadersReject(path, "NaN depth");
+}
+
+TEST(SuperpixelIoTest, InconsistentMapsAreNotWritten) {
+  testing::TempDir dir;
+  const std::string path = (dir / "x.spx").string();
+  SuperpixelMap map = MakeMap(10, 10);
+  map.labels[5] = static_cast<int32_t>(map.clusters.size());
+  EXPECT_THROW(WriteSuperpixels(path, map, 0), Error);
+  map = MakeMap(10, 10);
+  map.labels.pop_back();
+  EXPECT_THROW(WriteSuperpixels(path, map, 0), Error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}
+
+}  // namespace
+}  // namespace sacfuse
