@@ -20,9 +20,9 @@ std::string NodeKind(const YAML::Node& n) {
   }
 }
 
-std::string FormatDouble(double v) {
+std::string FormatDouble(double v, int digits = 15) {
   std::ostringstream os;
-  os << std::setprecision(15) << v;
+  os << std::setprecision(digits) << v;
   std::string s = os.str();
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
   return s;
@@ -76,6 +76,13 @@ void ConfigSchema::AddDouble(const std::string& key, double* field, const std::s
   Entry e{key, doc, {}, nullptr, nullptr};
   e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "a number"); };
   e.get = [field] { return FormatDouble(*field); };
+  entries_.push_back(std::move(e));
+}
+
+void ConfigSchema::AddFloat(const std::string& key, float* field, const std::string& doc) {
+  Entry e{key, doc, {}, nullptr, nullptr};
+  e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "a number"); };
+  e.get = [field] { return FormatDouble(*field, 7); };
   entries_.push_back(std::move(e));
 }
 

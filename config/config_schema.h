@@ -17,6 +17,7 @@ class ConfigSchema {
   void AddString(const std::string& key, std::string* field, const std::string& doc,
                  std::vector<std::string> allowed = {});
   void AddDouble(const std::string& key, double* field, const std::string& doc);
+  void AddFloat(const std::string& key, float* field, const std::string& doc);
   void AddInt(const std::string& key, int* field, const std::string& doc);
   void AddBool(const std::string& key, bool* field, const std::string& doc);
   void AddDoubleList(const std::string& key, std::vector<double>* field, const std::string& doc);

@@ -7,7 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "config/config_schema.h"
-#include "config/option_check.h"
+#include "core/option_check.h"
 #include "core/error.h"
 
 namespace sacfuse {
@@ -25,7 +25,38 @@ ConfigSchema MakeSchema(JobConfig* c) {
               {"1.4", "1.2"});
   s.AddDouble("output.scale_m", &c->output.scale_m, "LAS coordinate quantum, metres; 10^k x {1, 0.5, 0.25}");
   s.AddString("fusion.method", &c->fusion.method,
-              "fusion method: union (every valid depth pixel, no fusion: the 'before fusion' baseline)", {"union"});
+              "fusion method: sac (Select-and-Combine) | union (every valid depth pixel: the 'before fusion' baseline)",
+              {"sac", "union"});
+  SacOptions& f = c->fusion.sac;
+  s.AddInt("fusion.max_neighbor_views", &f.max_neighbor_views, "neighbour views per view (by footprint overlap)");
+  s.AddDouble("fusion.max_view_angle_deg", &f.max_view_angle_deg, "max angle between neighbours' view directions, deg");
+  s.AddDouble("fusion.min_footprint_overlap", &f.min_footprint_overlap, "min shared fraction of a footprint, 0-1");
+  s.AddString("fusion.correspondence", &f.correspondence,
+              "point groups: reprojection | proximity (3D radius) | dense (input's dense matches)",
+              {"reprojection", "proximity", "dense"});
+  s.AddDouble("fusion.depth_tolerance_gsd", &f.depth_tolerance_gsd, "depth agreement tolerance, in local GSDs");
+  s.AddDouble("fusion.depth_tolerance_rel", &f.depth_tolerance_rel, "plus this fraction of the depth, 0-0.5");
+  s.AddDouble("fusion.proximity_radius_m", &f.proximity_radius_m, "proximity search radius, m; 0 = 1.5 superpixels");
+  s.AddDouble("fusion.tau_m", &f.tau_m, "Netlet edge threshold tau, metres (paper: 2)");
+  s.AddString("fusion.unary", &f.unary, "unary term: quality | paper (constant)", {"quality", "paper"});
+  s.AddDouble("fusion.quality_weight", &f.quality_weight, "quality unary: weight of relative GSD");
+  s.AddDouble("fusion.agreement_weight", &f.agreement_weight, "quality unary: weight of disagreement");
+  s.AddDouble("fusion.agreement_tolerance_gsd", &f.agreement_tolerance_gsd,
+              "quality unary: stricter 'views agree' tolerance, local GSDs");
+  s.AddDouble("fusion.displacement_weight", &f.displacement_weight, "quality unary: weight of node displacement");
+  s.AddDouble("fusion.smoothness_weight", &f.smoothness_weight, "smoothness between adjacent clusters (0 = off)");
+  s.AddInt("fusion.smoothness_rounds", &f.smoothness_rounds, "rounds of that smoothness");
+  s.AddInt("fusion.min_consistent_views", &f.min_consistent_views,
+           "outliers: min views (own included) agreeing with a point");
+  s.AddString("fusion.superpixel_cache_dir", &c->fusion.superpixel_cache_dir,
+              "where superpixels are stored and reused; empty = <output.dir>/superpixels");
+  SuperpixelOptions& sp = f.superpixels;
+  s.AddInt("superpixels.region_size_px", &sp.region_size_px, "SLIC region size, depth-map pixels");
+  s.AddFloat("superpixels.ruler", &sp.ruler, "SLIC compactness");
+  s.AddInt("superpixels.iterations", &sp.iterations, "SLIC iterations");
+  s.AddString("superpixels.algorithm", &sp.algorithm, "slic | slico | mslic", {"slic", "slico", "mslic"});
+  s.AddInt("superpixels.block_size_px", &sp.block_size_px, "images are segmented in blocks of this size, px");
+  s.AddFloat("superpixels.depth_weight", &sp.depth_weight, "weight of depth as an extra SLIC channel (0 = off)");
   s.AddInt("resources.threads", &c->resources.threads, "worker threads; 0 = all cores");
   s.AddDouble("resources.memory_gb", &c->resources.memory_gb, "memory budget, GiB; > 0");
   s.AddString("evaluation.reference", &c->evaluation.reference,
@@ -70,6 +101,7 @@ void ValidateJobConfig(const JobConfig& c) {
   check.Require(!c.evaluation.tau_gsd.empty(), "evaluation.tau_gsd", "[]", "must list at least one threshold");
   for (double t : c.evaluation.tau_gsd) check.Greater("evaluation.tau_gsd[]", t, 0.0);
   check.ThrowIfFailed(c.source_file.empty() ? "config" : c.source_file);
+  if (c.fusion.method == "sac") ValidateSacOptions(c.fusion.sac);
 }
 
 JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
@@ -86,6 +118,7 @@ JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source
   config.output.dir = ResolvePath(config.output.dir, base_dir);
   config.evaluation.reference = ResolvePath(config.evaluation.reference, base_dir);
   config.evaluation.mask = ResolvePath(config.evaluation.mask, base_dir);
+  config.fusion.superpixel_cache_dir = ResolvePath(config.fusion.superpixel_cache_dir, base_dir);
   ValidateJobConfig(config);
   return config;
 }

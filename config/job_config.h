@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/sac_options.h"
+
 namespace sacfuse {
 
 struct InputOptions {
@@ -20,8 +22,11 @@ struct OutputOptions {
 };
 
 struct FusionOptions {
+  // sac:   Select-and-Combine (Netlets over superpixels; see core/sac_options.h for every option).
   // union: every valid depth pixel becomes a point (no fusion; the "before fusion" baseline).
-  std::string method = "union";
+  std::string method = "sac";
+  SacOptions sac;          // YAML: fusion.<field> and superpixels.<field>
+  std::string superpixel_cache_dir;  // "" = <output.dir>/superpixels; reused by later runs with equal options
 };
 
 struct ResourceOptions {

@@ -1,4 +1,4 @@
-#include "config/option_check.h"
+#include "core/option_check.h"
 
 #include "core/error.h"
 

@@ -12,6 +12,7 @@
 #include "io/colmap_workspace.h"
 #include "io/las_writer.h"
 #include "jobs/resource_usage.h"
+#include "jobs/sac_block.h"
 #include "jobs/version.h"
 
 namespace sacfuse {
@@ -48,7 +49,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
   for (const auto& v : s.views) {
     views.push_back({{"name", v.name}, {"input_pixels", v.input_pixels}, {"output_points", v.output_points}});
   }
-  const nlohmann::json j = {{"version", VersionString()},
+  nlohmann::json j = {{"version", VersionString()},
                             {"config", config.source_file},
                             {"method", s.method},
                             {"fused_las", s.las_path},
@@ -58,6 +59,24 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                             {"cpu_seconds", s.cpu_seconds},
                             {"peak_rss_mib", s.peak_rss_mib},
                             {"views", views}};
+  if (s.has_sac_stats) {
+    nlohmann::json stages = nlohmann::json::object();
+    for (const auto& [stage, secs] : s.sac.stage_seconds) stages[stage] = secs;
+    j["sac"] = {{"nodes", s.sac.nodes},
+                {"valid_nodes", s.sac.valid_nodes},
+                {"mean_correspondences", s.sac.mean_correspondences},
+                {"netlets", s.sac.labeling.netlets},
+                {"netlets_proven_optimal", s.sac.labeling.proven_optimal},
+                {"netlet_size_histogram", s.sac.labeling.size_histogram},
+                {"nodes_keeping_own_view", s.sac.labeling.nodes_keeping_own_view},
+                {"nodes_relabelled", s.sac.labeling.nodes_relabelled},
+                {"pixels_in", s.sac.collapse.input_pixels},
+                {"pixels_collapsed", s.sac.collapse.collapsed},
+                {"pixels_outliers", s.sac.collapse.outliers},
+                {"points_emitted", s.sac.collapse.emitted},
+                {"superpixels_computed", s.superpixels_computed},
+                {"stage_seconds", stages}};
+  }
   WriteFileAtomically(s.report_path, j.dump(2) + "\n");
 }
 
@@ -86,20 +105,34 @@ RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress) {
   const auto& views = workspace.views();
   if (views.empty()) throw InputError(config.input.path, "the workspace has no images to fuse");
   spdlog::info("input: {} views from {}", views.size(), config.input.path);
-  spdlog::info("fusion method: {} (every valid depth pixel becomes a point; no fusion)", config.fusion.method);
-
   LasWriter writer(summary.las_path, MakeLasOptions(config.output));
   CountingSink counting(writer);
-  for (size_t i = 0; i < views.size(); ++i) {
-    const View& view = views[i];
-    const DepthMap depth = workspace.ReadDepthMap(view);
-    const RgbImage image = workspace.ReadImage(view);
-    ViewRunStats stats;
-    stats.name = view.name;
-    stats.input_pixels = BackprojectDepthMap(view, depth, &image, counting);
-    summary.input_points += stats.input_pixels;
-    summary.views.push_back(stats);
-    if (progress) progress("fuse", i + 1, views.size());
+  summary.views.resize(views.size());
+  for (size_t i = 0; i < views.size(); ++i) summary.views[i].name = views[i].name;
+  if (config.fusion.method == "union") {
+    spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
+    for (size_t i = 0; i < views.size(); ++i) {
+      const DepthMap depth = workspace.ReadDepthMap(views[i]);
+      const RgbImage image = workspace.ReadImage(views[i]);
+      summary.views[i].input_pixels = BackprojectDepthMap(views[i], depth, &image, counting);
+      summary.input_points += summary.views[i].input_pixels;
+      if (progress) progress("fuse", i + 1, views.size());
+    }
+  } else {
+    spdlog::info("fusion method: sac (Select-and-Combine, unary '{}', correspondences '{}')",
+                 config.fusion.sac.unary, config.fusion.sac.correspondence);
+    const std::string cache_dir = config.fusion.superpixel_cache_dir.empty()
+                                      ? (std::filesystem::path(config.output.dir) / "superpixels").string()
+                                      : config.fusion.superpixel_cache_dir;
+    const SacBlockResult sac = FuseWorkspaceWithSac(workspace, config.fusion.sac, cache_dir, counting, progress);
+    summary.has_sac_stats = true;
+    summary.sac = sac.stats;
+    summary.superpixels_computed = sac.superpixels_computed;
+    summary.input_points = sac.stats.collapse.input_pixels;
+    spdlog::info("SAC: {} nodes in {} Netlets ({} proven optimal); {} pixels in, {} collapsed, {} outliers, {} out",
+                 sac.stats.valid_nodes, sac.stats.labeling.netlets, sac.stats.labeling.proven_optimal,
+                 sac.stats.collapse.input_pixels, sac.stats.collapse.collapsed, sac.stats.collapse.outliers,
+                 sac.stats.collapse.emitted);
   }
   writer.Close();
   summary.output_points = writer.num_points();

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "config/job_config.h"
+#include "core/sac_fusion.h"
 
 namespace sacfuse {
 
@@ -26,6 +27,9 @@ struct RunSummary {
   double wall_seconds = 0.0;
   double cpu_seconds = 0.0;
   double peak_rss_mib = 0.0;
+  bool has_sac_stats = false;  // method == sac
+  SacStats sac;
+  size_t superpixels_computed = 0;
 };
 
 // Called as work proceeds: stage name, units done, units total.

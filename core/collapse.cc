@@ -1,0 +1,93 @@
+#include "core/collapse.h"
+
+#include <algorithm>
+
+#include <tbb/parallel_for.h>
+
+#include "core/sac_tolerance.h"
+
+namespace sacfuse {
+namespace {
+
+constexpr int kRowsPerBlock = 16;
+constexpr int kBlocksPerBatch = 64;
+
+std::array<uint8_t, 3> SampleColor(const SacView& view, int row, int col) {
+  if (view.image == nullptr || view.image->empty()) return {128, 128, 128};
+  const RgbImage& img = *view.image;
+  const int ic = std::min(img.width - 1, static_cast<int>((col + 0.5) * img.width / view.depth->width));
+  const int ir = std::min(img.height - 1, static_cast<int>((row + 0.5) * img.height / view.depth->height));
+  std::array<uint8_t, 3> rgb;
+  for (int c = 0; c < 3; ++c) rgb[c] = img.at(ir, ic, std::min(c, img.channels - 1));
+  return rgb;
+}
+
+}  // namespace
+
+CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
+                       const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
+                       const SacOptions& options, PointSink& sink) {
+  const SacView& view = views[v];
+  const DepthMap& depth = *view.depth;
+  const int num_blocks = (depth.height + kRowsPerBlock - 1) / kRowsPerBlock;
+  CollapseStats total;
+  std::vector<std::vector<FusedPoint>> block_points(kBlocksPerBatch);
+  std::vector<CollapseStats> block_stats(kBlocksPerBatch);
+
+  auto process_block = [&](int block, std::vector<FusedPoint>& out, CollapseStats& stats) {
+    out.clear();
+    stats = CollapseStats{};
+    const int row_end = std::min(depth.height, (block + 1) * kRowsPerBlock);
+    for (int row = block * kRowsPerBlock; row < row_end; ++row) {
+      for (int col = 0; col < depth.width; ++col) {
+        const float d = depth.at(row, col);
+        if (!IsValidDepth(d)) continue;
+        ++stats.input_pixels;
+        const Eigen::Vector3d point =
+            view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, static_cast<double>(d));
+        const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
+        if (label != v) {
+          const SacView& target = views[label];
+          const DepthLookup hit = LookupDepth(target, point);
+          if (DepthAgrees(target, hit, options) &&
+              chosen_view[nodes.Id(label, static_cast<uint32_t>(target.superpixels->label(hit.row, hit.col)))] ==
+                  label) {
+            ++stats.collapsed;
+            continue;
+          }
+        }
+        if (options.min_consistent_views > 1) {
+          int consistent = 1;
+          for (const uint32_t b : neighbors[v]) {
+            if (DepthAgrees(views[b], LookupDepth(views[b], point), options) &&
+                ++consistent >= options.min_consistent_views) {
+              break;
+            }
+          }
+          if (consistent < options.min_consistent_views) {
+            ++stats.outliers;
+            continue;
+          }
+        }
+        FusedPoint p;
+        p.point_in_world = point;
+        p.rgb = SampleColor(view, row, col);
+        p.view_index = view.view.index;
+        out.push_back(p);
+      }
+    }
+    stats.emitted = out.size();
+  };
+
+  for (int first = 0; first < num_blocks; first += kBlocksPerBatch) {
+    const int count = std::min(kBlocksPerBatch, num_blocks - first);
+    tbb::parallel_for(0, count, [&](int i) { process_block(first + i, block_points[i], block_stats[i]); });
+    for (int i = 0; i < count; ++i) {
+      if (!block_points[i].empty()) sink.Write(block_points[i].data(), block_points[i].size());
+      total += block_stats[i];
+    }
+  }
+  return total;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,40 @@
+#pragma once
+// Netlet collapse (Section III.B, "combine"): every pixel takes its cluster's label; same-labelled nodes collapse
+// onto the points of the selected view.
+//
+// Coverage rule (the paper is silent): a pixel of view a whose cluster chose view L != a is dropped only when view
+// L actually emits that surface: the pixel's point projects into L onto a valid depth that agrees with it, and the
+// cluster there chose L itself. Otherwise the pixel is emitted from its own view. So no surface patch observed
+// consistently is lost to the collapse.
+// Outliers: an emitted point must agree with at least min_consistent_views depth maps (its own included) among
+// its view's neighbours; blunders and floaters seen by one view only are removed.
+#include <cstdint>
+#include <vector>
+
+#include "core/point.h"
+#include "core/sac_nodes.h"
+#include "core/sac_options.h"
+#include "core/sac_view.h"
+
+namespace sacfuse {
+
+struct CollapseStats {
+  uint64_t input_pixels = 0;      // valid depth pixels
+  uint64_t collapsed = 0;         // dropped: covered by the view their cluster chose
+  uint64_t outliers = 0;          // dropped: too few consistent views
+  uint64_t emitted = 0;
+  CollapseStats& operator+=(const CollapseStats& o) {
+    input_pixels += o.input_pixels;
+    collapsed += o.collapsed;
+    outliers += o.outliers;
+    emitted += o.emitted;
+    return *this;
+  }
+};
+
+// Emits the fused points of view `v` to `sink` in row order (deterministic for any thread count).
+CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
+                       const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
+                       const SacOptions& options, PointSink& sink);
+
+}  // namespace sacfuse

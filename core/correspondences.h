@@ -1,0 +1,26 @@
+#pragma once
+// Point groups (paper Section III.B): for each node, its corresponding nodes in other views, at most one per
+// view. Three strategies (SacOptions::correspondence), compared in the paper's Table IV.
+#include <cstdint>
+#include <vector>
+
+#include "core/sac_nodes.h"
+#include "core/sac_options.h"
+#include "core/sac_view.h"
+
+namespace sacfuse {
+
+struct Correspondences {
+  std::vector<uint32_t> offsets;   // nodes + 1 (CSR)
+  std::vector<uint32_t> node_ids;  // corresponding node ids, ordered by the neighbour order of the node's view
+
+  const uint32_t* begin(uint32_t node) const { return node_ids.data() + offsets[node]; }
+  const uint32_t* end(uint32_t node) const { return node_ids.data() + offsets[node + 1]; }
+  size_t count(uint32_t node) const { return offsets[node + 1] - offsets[node]; }
+};
+
+// Deterministic for any thread count. Throws Error for the dense strategy when a view has no consistency graph.
+Correspondences FindCorrespondences(const std::vector<SacView>& views, const NodeTable& nodes,
+                                    const std::vector<std::vector<uint32_t>>& neighbors, const SacOptions& options);
+
+}  // namespace sacfuse

@@ -1,0 +1,48 @@
+#pragma once
+// Options of Select-and-Combine fusion (YAML section `fusion`). Defaults were chosen by measured F1 on simulated
+// blocks with errors (see README "SAC fusion: choices"); units in each comment.
+#include <string>
+
+#include "core/superpixels.h"
+
+namespace sacfuse {
+
+struct SacOptions {
+  // --- Neighbour views, chosen from geometry (not a fixed list).
+  int max_neighbor_views = 10;          // per view, the best by footprint overlap x cos(view angle)
+  double max_view_angle_deg = 65.0;     // max angle between two views' viewing directions, degrees
+  double min_footprint_overlap = 0.05;  // min fraction of a view's footprint box shared with the neighbour
+  // --- Correspondences (point groups), paper Section III.B / IV.D.
+  //   reprojection: project a node into each neighbour view, take the superpixel there if its depth agrees.
+  //   proximity:    3D radius search among all nodes (k-d tree); the nearest node of each other view.
+  //   dense:        the input's dense-matching consistency (COLMAP consistency graphs) names the views; the
+  //                 node is projected into them without a depth test.
+  std::string correspondence = "reprojection";
+  // "Same surface" tolerance for correspondences, collapse coverage and the outlier test, in units of the local
+  // GSD (depth / focal), plus a fraction of the depth (COLMAP's 1 % would be 0.01).
+  double depth_tolerance_gsd = 4.0;
+  double depth_tolerance_rel = 0.0;
+  double proximity_radius_m = 0.0;      // proximity strategy search radius, metres; 0 = 1.5 x superpixel size
+  // --- Netlets (Algorithm 1): nodes are superpixel centroids; edges join nodes closer than tau.
+  double tau_m = 2.0;                   // edge threshold, metres (paper: 2 m); weight = exp(-distance)
+  // --- Labelling: Eq. (2) per Netlet, solved exactly (branch and bound) or within 2x (alpha-expansion).
+  //   paper:   constant unary (= 1); ties go to the seed's own view (the paper leaves them to chance).
+  //   quality: expected depth uncertainty of the candidate view (its local GSD), how many other views agree
+  //            with it, and how far the node would move.
+  std::string unary = "quality";
+  double quality_weight = 1.0;          // weight of (gsd / best gsd - 1)
+  double agreement_weight = 1.0;        // weight of (1 - fraction of the other views agreeing)
+  double agreement_tolerance_gsd = 1.5;  // stricter tolerance for "agreeing" in the quality unary, local GSDs
+  double displacement_weight = 0.5;     // weight of min(|p_node - p_label| / tau, 1)
+  double smoothness_weight = 0.0;       // bonus for the label of adjacent clusters of the same view (0 = off)
+  int smoothness_rounds = 2;            // Jacobi rounds of that cross-Netlet smoothness
+  // --- Collapse and outliers.
+  int min_consistent_views = 2;         // a point must agree with this many views (its own included)
+  // --- Superpixels (nodes).
+  SuperpixelOptions superpixels;
+};
+
+// Throws ConfigError naming `fusion.<key>`, the value and the rule for every invalid field.
+void ValidateSacOptions(const SacOptions& options);
+
+}  // namespace sacfuse

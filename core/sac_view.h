@@ -1,0 +1,41 @@
+#pragma once
+// What SAC needs of one view, at depth-map resolution. The rasters are owned by the caller (jobs/), which decides
+// what is in memory; core never reads files.
+#include <cmath>
+
+#include "core/camera.h"
+#include "core/consistency_graph.h"
+#include "core/raster.h"
+#include "core/rigid3.h"
+#include "core/superpixels.h"
+#include "core/view.h"
+
+namespace sacfuse {
+
+struct SacView {
+  View view;                                   // intrinsics at image resolution, pose
+  PinholeCamera depth_camera;                  // view.camera scaled to the depth raster
+  Rigid3d world_from_cam;                      // inverse pose, cached
+  const DepthMap* depth = nullptr;             // z-depth, metres
+  const SuperpixelMap* superpixels = nullptr;  // same size as depth
+  const RgbImage* image = nullptr;             // colours (any resolution); null = grey points
+  const ConsistencyGraph* consistency = nullptr;  // dense-matching consistency; null when the input has none
+
+  // Local ground sampling distance at depth z: metres covered by one depth pixel.
+  double GsdAt(double depth_m) const { return depth_m / depth_camera.fx; }
+};
+
+// Builds the cached fields (depth_camera, world_from_cam) from view and rasters.
+SacView MakeSacView(const View& view, const DepthMap* depth, const SuperpixelMap* superpixels, const RgbImage* image,
+                    const ConsistencyGraph* consistency = nullptr);
+
+// Where a world point falls in a view's depth raster.
+struct DepthLookup {
+  bool inside = false;      // in front of the camera and inside the raster
+  int row = 0, col = 0;     // pixel
+  double z_m = 0.0;         // the point's depth in this view
+  float stored_depth_m = 0.0f;  // the depth map's value at the pixel (<= 0 invalid)
+};
+DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_world);
+
+}  // namespace sacfuse

@@ -1,0 +1,19 @@
+#pragma once
+// Superpixels are computed once per view and stored on disk (io/superpixel_io.h); later runs, and later the
+// tiles of one run, reuse them when the options fingerprint and raster size match.
+#include <string>
+
+#include "core/raster.h"
+#include "core/superpixels.h"
+
+namespace sacfuse {
+
+// Cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.spx").
+std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name);
+
+// Loads the cached superpixels of a view, or computes and stores them. `*computed` tells which happened.
+SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const std::string& image_name,
+                                       const RgbImage& image, const DepthMap& depth,
+                                       const SuperpixelOptions& options, bool* computed = nullptr);
+
+}  // namespace sacfuse
