@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "config/job_config.h"
+#include "core/error.h"
 #include "io/atomic_file.h"
 #include "jobs/run_fusion.h"
 #include "tools/cli/cli_support.h"

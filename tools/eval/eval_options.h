@@ -17,6 +17,24 @@ struct EvalOptions {
   double align_max_points = 200000;       // subsample for ICP
   double top_cell_m = 0.0;                // XY cell of the reference top-surface model, metres (0 = 4 x gsd)
   std::string json_path;                  // write the report as JSON here ("" = none)
+
+  // --- Added by the eval module (defaults keep the behaviour documented in eval.h) ---
+  // Completeness counts a reference point only when cameras can see it: z >= occluder - max(tau, this), metres.
+  double visible_margin_m = 0.5;
+  // ICP: "point_to_plane" (reference normals from 10 neighbours; best for roofs and terrain) or "point_to_point".
+  std::string align_mode = "point_to_plane";
+  double align_trim_fraction = 0.8;       // ICP keeps this fraction of correspondences (the closest), in (0, 1]
+  double align_max_distance_m = 2.0;      // ICP drops correspondences farther apart than this, metres
+  unsigned align_seed = 1;                // seed of the ICP subsample (runs are deterministic)
 };
+
+// The thresholds in metres, sorted ascending and de-duplicated: tau_m when given, else tau_gsd x gsd_m.
+std::vector<double> EvalThresholds(const EvalOptions& options);
+// Effective voxel size and top-surface cell, metres.
+double EvalVoxelSize(const EvalOptions& options);
+double EvalTopCellSize(const EvalOptions& options);
+
+// Throws ConfigError listing every broken rule as "eval.<key> = <value>: <rule>".
+void ValidateEvalOptions(const EvalOptions& options);
 
 }  // namespace sacfuse

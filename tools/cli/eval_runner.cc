@@ -1,0 +1,37 @@
+#include "tools/cli/eval_runner.h"
+
+#include <cstdio>
+
+#include <spdlog/spdlog.h>
+
+#include "tools/eval/eval.h"
+#include "tools/eval/eval_options.h"
+#include "tools/eval/eval_report_json.h"
+
+namespace sacfuse::cli {
+
+void RunEvaluation(const EvalRequest& request, std::ostream& out) {
+  EvalOptions options;
+  options.gsd_m = request.gsd_m;
+  options.tau_gsd = request.tau_gsd;
+  options.tau_m = request.tau_m;
+  options.mask_path = request.mask_png;
+  options.align = request.align;
+  options.json_path = request.json_path;
+  ValidateEvalOptions(options);
+  spdlog::info("evaluating {} against {}", request.result_las, request.reference_las);
+  const EvalReport report = EvaluateLasFiles(request.result_las, request.reference_las, options);
+  out << FormatEvalTable(report);
+  for (const auto& s : report.scores) {
+    char line[160];
+    std::snprintf(line, sizeof(line), "F1 @ %.3f m (%.1f x GSD): %.2f %%  (accuracy %.2f %%, completeness %.2f %%)\n",
+                  s.tau_m, s.tau_m / request.gsd_m, 100.0 * s.f1, 100.0 * s.accuracy, 100.0 * s.completeness);
+    out << line;
+  }
+  if (!request.json_path.empty()) {
+    WriteEvalReportJson(report, request.json_path);
+    out << "scores written to " << request.json_path << "\n";
+  }
+}
+
+}  // namespace sacfuse::cli
