@@ -34,6 +34,9 @@ struct SimErrorOptions {
   double dropout_fraction = 0.02;        // fraction of pixels dropped in small clusters
   double oblique_factor = 1.5;           // obliques are this much noisier
   double scale = 1.0;                    // multiplies every magnitude above (2-3 = harsher, closer to real)
+  // --- Added by the sim module ---
+  // Sparse (SfM-like) observations: points2D = projection with the WRITTEN pose + N(0, this) per axis, pixels.
+  double keypoint_sigma_px = 0.5;
 };
 
 struct SimOptions {
@@ -64,10 +67,25 @@ struct SimOptions {
   int depth_downsample = 1;              // depth maps at image size / this factor
   double reference_density_pts_m2 = 10.0;  // LiDAR-like reference sampling of the true surface
   SimErrorOptions errors;
+
+  // --- Added by the sim module (defaults keep the behaviour described in simulate.h) ---
+  bool write_truth = false;              // also write truth/: TRUE poses and error-free depth maps (the ceiling)
+  double eval_cell_m = 0.0;              // eval_mask.png cell, metres (0 = 1 m, halved while the shorter area side
+                                         // has < 100 cells, down to 0.25 m)
+  double sparse_area_per_point_m2 = 20.0;  // one sparse-point candidate per this much area, m^2
+  int min_sparse_points = 300;           // ... but at least this many candidates
+  int jpeg_quality = 92;                 // images/*.jpg, 1..100
+  double sun_azimuth_deg = 135.0;        // Lambert shading: sun azimuth, degrees clockwise from north
+  double sun_elevation_deg = 50.0;       // sun elevation above the horizon, degrees
+  double ambient = 0.35;                 // ambient share of the light, 0..1
+  double city_rotation_deg = 15.0;       // street grid of the procedural city against east, degrees
+  double las_cell_m = 0.0;               // DSM cell of a --from-las scene, metres (0 = from the point density)
 };
 
-// Preset names: "tiny" (seconds, for unit tests), "small" (demo), "medium", "dortmund" (16 nadir + 43 oblique
-// views of 6132x8176 px at 10 cm GSD, about 1 km2). Throws ConfigError for an unknown name.
+// Preset names (details in sim_options.cc): "tiny" (60 m, 20 views of 320x240 px at 20 cm GSD; about a second,
+// for unit tests), "small" (the demo: 130 m, 56 views of 800x600 px at 10 cm), "medium" (400 m, 100 views of
+// 2000x1500 px), "dortmund" (16 nadir + 43 oblique views of 6132x8176 px at 10 cm GSD, about 1 km2).
+// Throws ConfigError for an unknown name.
 SimOptions SimPreset(const std::string& name);
 std::vector<std::string> SimPresetNames();
 

@@ -1,0 +1,323 @@
+#include "tools/sim/simulate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/colmap_array.h"
+#include "io/colmap_model.h"
+#include "io/colmap_workspace.h"
+#include "io/geo_mask_io.h"
+#include "tools/sim/city_layout.h"
+#include "tools/sim/city_scene.h"
+#include "tools/sim/depth_errors.h"
+#include "tools/sim/depth_normals.h"
+#include "tools/sim/flight_plan.h"
+#include "tools/sim/las_scene.h"
+#include "tools/sim/reference_cloud.h"
+#include "tools/sim/render.h"
+#include "tools/sim/sim_metadata.h"
+#include "tools/sim/sim_random.h"
+#include "tools/sim/sim_workspace.h"
+#include "tools/sim/sparse_points.h"
+#include "tools/sim/visibility.h"
+
+namespace sacfuse {
+namespace sim {
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
+
+std::string Join(const std::string& dir, const std::string& relative) { return (fs::path(dir) / relative).string(); }
+
+// One workspace on disk (the main one or truth/).
+struct Workspace {
+  std::string root;
+  ColmapModel model;
+  std::string Image(const std::string& name) const { return Join(root, "images/" + name); }
+  std::string Depth(const std::string& name) const { return Join(root, "stereo/depth_maps/" + name + ".geometric.bin"); }
+  std::string Normal(const std::string& name) const {
+    return Join(root, "stereo/normal_maps/" + name + ".geometric.bin");
+  }
+  void WriteMaps(const std::string& name, const DepthMap& depth, const NormalMap& normals) const {
+    CreateParentDirs(Depth(name));
+    CreateParentDirs(Normal(name));
+    WriteColmapArray(Depth(name), depth);
+    WriteColmapArray(Normal(name), normals);
+  }
+  void AddView(uint32_t index, const PlannedView& view, const Rigid3d& pose, std::vector<ColmapPoint2D> points2D) {
+    ColmapCamera camera;
+    camera.camera_id = index + 1;
+    camera.model = "PINHOLE";
+    camera.width = static_cast<uint64_t>(view.camera.width);
+    camera.height = static_cast<uint64_t>(view.camera.height);
+    camera.params = {view.camera.fx, view.camera.fy, view.camera.cx, view.camera.cy};
+    model.cameras[camera.camera_id] = camera;
+    ColmapImage image;
+    image.image_id = index + 1;
+    image.camera_id = camera.camera_id;
+    image.cam_from_world_rotation = pose.rotation.normalized();
+    image.cam_from_world_translation = pose.translation;
+    image.name = view.name;
+    image.points2D = std::move(points2D);
+    model.images.push_back(std::move(image));
+  }
+  void Finish(const std::vector<std::string>& names) const {
+    const std::string sparse = Join(root, "sparse");
+    fs::create_directories(sparse);
+    WriteColmapModelBinary(model, sparse);
+    WriteColmapStereoConfigs(root, names);
+  }
+};
+
+Json ViewJson(uint32_t index, const PlannedView& view, const Rigid3d& written, const PoseError& pose_error,
+              const ViewErrorModel& model, const DepthErrorReport& report, const PinholeCamera& depth_camera,
+              const RenderedView& rendered, const Workspace& ws, double ground_z) {
+  Json bias = Json::array();
+  for (const CosineMode& m : report.bias_modes) {
+    bias.push_back({{"fu", m.fu}, {"fv", m.fv}, {"phase", m.phase}, {"weight", m.weight}});
+  }
+  const double range = (view.cam_from_world.Inverse().translation.z() - ground_z) /
+                       std::max(1e-9, -(view.cam_from_world.rotation.conjugate() * Eigen::Vector3d::UnitZ()).z());
+  const Json true_pose = Json::parse(PoseJson(view.cam_from_world));
+  const Json written_pose = Json::parse(PoseJson(written));
+  const auto rel = [&](const std::string& path) { return fs::path(path).lexically_relative(ws.root).string(); };
+  return Json{
+      {"index", index},
+      {"image_id", index + 1},
+      {"name", view.name},
+      {"kind", ViewKindName(view.kind)},
+      {"exposure", view.exposure},
+      {"line", view.line},
+      {"camera", Json::parse(CameraJson(view.camera))},
+      {"depth_camera", Json::parse(CameraJson(depth_camera))},
+      {"true_cam_from_world", true_pose},
+      {"written_cam_from_world", written_pose},
+      {"true_center", true_pose["center"]},
+      {"written_center", written_pose["center"]},
+      {"footprint_center", {view.footprint_center.x(), view.footprint_center.y()}},
+      {"footprint_in_area_m2", view.footprint_in_area_m2},
+      {"errors",
+       {{"enabled", model.enabled},
+        {"pose_center_delta_m", {pose_error.center_delta_m.x(), pose_error.center_delta_m.y(), pose_error.center_delta_m.z()}},
+        {"pose_rotation_delta_deg",
+         {pose_error.rotation_delta_rad.x() * 180.0 / M_PI, pose_error.rotation_delta_rad.y() * 180.0 / M_PI,
+          pose_error.rotation_delta_rad.z() * 180.0 / M_PI}},
+        {"disparity_sigma_px", model.disparity_sigma_px},
+        {"baseline_m", model.baseline_m},
+        {"stereo_sigma_at_center_m", model.enabled ? model.StereoSigma(range) : 0.0},
+        {"bias_amplitude_m", model.bias_amplitude_m},
+        {"bias_modes", bias},
+        {"blunder_count", report.blunder_count},
+        {"blunder_pixels", report.blunder_pixels},
+        {"fattened_pixels", report.fattened_pixels},
+        {"occluded_pixels", report.occluded_pixels},
+        {"dropout_pixels", report.dropout_pixels},
+        {"true_valid_pixels", report.valid_in},
+        {"valid_pixels", report.valid_out}}},
+      {"render", {{"tiles", rendered.tiles}, {"triangles", rendered.triangles}}},
+      {"files",
+       {{"image", rel(ws.Image(view.name))}, {"depth", rel(ws.Depth(view.name))}, {"normal", rel(ws.Normal(view.name))}}},
+  };
+}
+
+}  // namespace
+
+SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std::string& out_dir,
+                         const SimProgress& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  auto report = [&](const std::string& stage, size_t done, size_t total) {
+    if (progress) progress(stage, done, total);
+  };
+  if (scene.surface == nullptr) throw Error("SimulateScene: no surface");
+  const Surface& surface = *scene.surface;
+  const Box2 area{scene.area_x0, scene.area_y0, scene.area_x1, scene.area_y1};
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) throw Error(out_dir + ": cannot create the output folder: " + ec.message());
+
+  const FlightPlan plan = PlanFlight(o, area, scene.ground_z);
+  if (plan.views.empty()) throw ConfigError("sim: no view of the flight plan sees the area; check the area and overlaps");
+  report("plan", 1, 1);
+
+  SimSummary summary;
+  summary.workspace_dir = out_dir;
+  summary.reference_las = Join(out_dir, "reference.las");
+  summary.eval_mask_png = Join(out_dir, "eval_mask.png");
+  summary.metadata_json = Join(out_dir, "metadata.json");
+  const ReferenceProgress ref_progress = [&](size_t done, size_t total) { report("reference", done, total); };
+  summary.reference_points =
+      scene.kind == "las" ? WriteLasReference(o.from_las, surface, area, summary.reference_las)
+                          : WriteSampledReference(surface, area, o.reference_density_pts_m2,
+                                                  StreamKey(o.seed, Stream::kReference), summary.reference_las,
+                                                  ref_progress);
+
+  const Lighting lighting = Lighting::FromAngles(o.sun_azimuth_deg, o.sun_elevation_deg, o.ambient);
+  const double cell = EvalCellSize(o.eval_cell_m, area);
+  CoverageCounter coverage(surface, area, cell);
+  const int sparse_count = std::max(
+      o.min_sparse_points, static_cast<int>(std::ceil(area.width() * area.height() / o.sparse_area_per_point_m2)));
+  SparsePointBuilder sparse(surface, area, sparse_count, lighting, StreamKey(o.seed, Stream::kSparse));
+
+  Workspace main_ws{out_dir, {}};
+  Workspace truth_ws{Join(out_dir, "truth"), {}};
+  Json views = Json::array();
+  std::vector<std::string> names;
+  const int ds = std::max(1, o.depth_downsample);
+  const double keypoint_sigma = o.errors.enabled ? o.errors.keypoint_sigma_px * o.errors.scale : 0.0;
+  for (size_t v = 0; v < plan.views.size(); ++v) {
+    const auto i = static_cast<uint32_t>(v);
+    const PlannedView& view = plan.views[v];
+    const bool oblique = view.kind != ViewKind::kNadir;
+    const PoseError pose_error = DrawPoseError(o.errors, StreamKey(o.seed, Stream::kPose, i));
+    const Rigid3d written = ApplyPoseError(view.cam_from_world, pose_error);
+    const int dw = std::max(1, view.camera.width / ds), dh = std::max(1, view.camera.height / ds);
+    const PinholeCamera depth_camera = ds == 1 ? view.camera : view.camera.Scaled(dw, dh);
+
+    RenderRequest request;
+    request.surface = &surface;
+    request.camera = view.camera;
+    request.cam_from_world = view.cam_from_world;
+    request.depth_width = dw;
+    request.depth_height = dh;
+    request.lighting = lighting;
+    RenderedView rendered = RenderView(request);
+    WriteJpeg(main_ws.Image(view.name), rendered.image, o.jpeg_quality);
+    RgbImage().data.swap(rendered.image.data);  // free the image before the depth stages
+
+    coverage.AddView(rendered.depth, depth_camera, view.cam_from_world);
+    std::vector<ColmapPoint2D> written_points2D, true_points2D;
+    sparse.ObserveView(i, rendered.depth, depth_camera, view.camera, view.cam_from_world, written, keypoint_sigma,
+                       &written_points2D, o.write_truth ? &true_points2D : nullptr);
+
+    // Flight direction (world +x) in the image decides the stereo baseline axis.
+    const Eigen::Vector3d flight_in_cam = view.cam_from_world.rotation * Eigen::Vector3d::UnitX();
+    const ViewErrorModel error_model = MakeViewErrorModel(o.errors, oblique, view.camera.fx, plan.baseline_m, ds,
+                                                          std::abs(flight_in_cam.x()) >= std::abs(flight_in_cam.y()));
+    DepthErrorReport error_report;
+    {
+      const DepthMap depth = ApplyDepthErrors(rendered.depth, error_model, StreamKey(o.seed, Stream::kStereoNoise, i),
+                                              &error_report);
+      main_ws.WriteMaps(view.name, depth, NormalsFromDepth(depth, depth_camera));
+    }
+    summary.depth_pixels += error_report.valid_out;
+    main_ws.AddView(i, view, written, std::move(written_points2D));
+    if (o.write_truth) {
+      truth_ws.WriteMaps(view.name, rendered.depth, NormalsFromDepth(rendered.depth, depth_camera));
+      CreateRelativeSymlink(main_ws.Image(view.name), truth_ws.Image(view.name));
+      truth_ws.AddView(i, view, view.cam_from_world, std::move(true_points2D));
+    }
+    views.push_back(ViewJson(i, view, written, pose_error, error_model, error_report, depth_camera, rendered, main_ws,
+                             scene.ground_z));
+    names.push_back(view.name);
+    (oblique ? summary.num_oblique : summary.num_nadir) += 1;
+    report("views", v + 1, plan.views.size());
+  }
+  summary.num_views = static_cast<int>(plan.views.size());
+
+  summary.sparse_points = sparse.Finish(&main_ws.model);
+  main_ws.Finish(names);
+  if (o.write_truth) {
+    sparse.Finish(&truth_ws.model);
+    truth_ws.Finish(names);
+  }
+  report("sparse", 1, 1);
+  WriteGeoMask(summary.eval_mask_png, coverage.Mask(2), scene.crs);
+
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  Json meta{
+      {"generator", "sacfuse simulate"},
+      {"preset", o.preset},
+      {"seed", o.seed},
+      {"scene", {{"kind", scene.kind}, {"description", surface.Describe()}, {"from_las", o.from_las}}},
+      {"crs", scene.crs},
+      {"gsd_m", o.gsd_m},
+      {"area",
+       {{"x0", area.x0}, {"y0", area.y0}, {"x1", area.x1}, {"y1", area.y1}, {"width_m", area.width()},
+        {"height_m", area.height()}}},
+      {"ground_z_m", scene.ground_z},
+      {"options", Json::parse(SimOptionsJson(o))},
+      {"flight",
+       {{"nadir_focal_px", plan.nadir_focal_px},
+        {"oblique_focal_px", plan.oblique_focal_px},
+        {"flying_height_m", plan.flying_height_m},
+        {"camera_z_m", plan.camera_z_m},
+        {"baseline_m", plan.baseline_m},
+        {"line_spacing_m", plan.line_spacing_m},
+        {"num_exposures", plan.num_exposures},
+        {"candidate_nadir_views", plan.candidate_nadir},
+        {"candidate_oblique_views", plan.candidate_oblique}}},
+      {"files",
+       {{"workspace", "."},
+        {"depth_type", "geometric"},
+        {"reference_las", "reference.las"},
+        {"eval_mask", "eval_mask.png"},
+        {"truth_workspace", o.write_truth ? Json("truth") : Json(nullptr)}}},
+      {"eval_mask", {{"cell_m", cell}, {"min_views", 2}, {"fraction_of_area", coverage.FractionSeen(2)}}},
+      {"summary",
+       {{"num_views", summary.num_views},
+        {"num_nadir", summary.num_nadir},
+        {"num_oblique", summary.num_oblique},
+        {"depth_pixels", summary.depth_pixels},
+        {"reference_points", summary.reference_points},
+        {"sparse_candidates", sparse.num_candidates()},
+        {"sparse_points", summary.sparse_points},
+        {"seconds", summary.seconds}}},
+      {"views", views},
+  };
+  WriteFileAtomically(summary.metadata_json, meta.dump(1) + "\n");
+  report("done", 1, 1);
+  return summary;
+}
+
+}  // namespace sim
+
+SimSummary SimulateBlock(const SimOptions& o, const std::string& out_dir, const SimProgress& progress) {
+  ValidateSimOptions(o);
+  if (progress) progress("scene", 0, 1);
+  sim::SceneSpec spec;
+  std::unique_ptr<sim::Surface> surface;
+  if (o.scene == "las") {
+    sim::LasSceneOptions lo;
+    lo.path = o.from_las;
+    lo.area_width_m = o.area_width_m;
+    lo.area_height_m = o.area_height_m;
+    lo.cell_m = o.las_cell_m;
+    lo.seed = o.seed;
+    auto las = std::make_unique<sim::LasScene>(lo);
+    spec.area_x0 = las->area().x0, spec.area_y0 = las->area().y0;
+    spec.area_x1 = las->area().x1, spec.area_y1 = las->area().y1;
+    spec.ground_z = las->ground_z();
+    spec.crs = las->crs_wkt();
+    spec.kind = "las";
+    surface = std::move(las);
+  } else {
+    sim::CityParams p;
+    p.area_width_m = o.area_width_m;
+    p.area_height_m = o.area_height_m;
+    p.center_x = o.origin_east_m + 0.5 * o.area_width_m;
+    p.center_y = o.origin_north_m + 0.5 * o.area_height_m;
+    p.ground_z = o.ground_height_m;
+    p.rotation_deg = o.city_rotation_deg;
+    p.margin_m = std::clamp(0.3 * std::max(o.area_width_m, o.area_height_m), 60.0, 300.0);
+    p.seed = o.seed;
+    surface = std::make_unique<sim::CityScene>(sim::GenerateCityLayout(p));
+    spec.area_x0 = o.origin_east_m, spec.area_y0 = o.origin_north_m;
+    spec.area_x1 = o.origin_east_m + o.area_width_m, spec.area_y1 = o.origin_north_m + o.area_height_m;
+    spec.ground_z = o.ground_height_m;
+    spec.crs = o.crs;
+    spec.kind = "city";
+  }
+  spec.surface = surface.get();
+  if (progress) progress("scene", 1, 1);
+  return sim::SimulateScene(o, spec, out_dir, progress);
+}
+
+}  // namespace sacfuse
