@@ -38,8 +38,11 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddDouble("fusion.depth_tolerance_rel", &f.depth_tolerance_rel, "plus this fraction of the depth, 0-0.5");
   s.AddDouble("fusion.proximity_radius_m", &f.proximity_radius_m, "proximity search radius, m; 0 = 1.5 superpixels");
   s.AddDouble("fusion.tau_m", &f.tau_m, "Netlet edge threshold tau, metres (paper: 2)");
+  s.AddString("fusion.netlets", &f.netlets, "Netlets: node (one per node, Algorithm 1) | partition (disjoint)",
+              {"node", "partition"});
   s.AddString("fusion.unary", &f.unary, "unary term: quality | paper (constant)", {"quality", "paper"});
-  s.AddDouble("fusion.quality_weight", &f.quality_weight, "quality unary: weight of relative GSD");
+  s.AddDouble("fusion.quality_weight", &f.quality_weight, "quality unary: weight of relative stereo depth uncertainty (z^2/f)");
+  s.AddDouble("fusion.min_incidence_cos", &f.min_incidence_cos, "quality unary: floor of cos(incidence), 0.01-1");
   s.AddDouble("fusion.agreement_weight", &f.agreement_weight, "quality unary: weight of disagreement");
   s.AddDouble("fusion.agreement_tolerance_gsd", &f.agreement_tolerance_gsd,
               "quality unary: stricter 'views agree' tolerance, local GSDs");

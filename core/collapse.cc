@@ -11,6 +11,7 @@ namespace {
 
 constexpr int kRowsPerBlock = 16;
 constexpr int kBlocksPerBatch = 64;
+constexpr int kMaxCoverageHops = 4;  // chains of choices longer than this are treated as not covering
 
 std::array<uint8_t, 3> SampleColor(const SacView& view, int row, int col) {
   if (view.image == nullptr || view.image->empty()) return {128, 128, 128};
@@ -47,14 +48,26 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
             view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, static_cast<double>(d));
         const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
         if (label != v) {
-          const SacView& target = views[label];
-          const DepthLookup hit = LookupDepth(target, point);
-          if (DepthAgrees(target, hit, options) &&
-              chosen_view[nodes.Id(label, static_cast<uint32_t>(target.superpixels->label(hit.row, hit.col)))] ==
-                  label) {
+          // Follow the choices: the chosen view's cluster there may itself have chosen another view.
+          uint32_t target = label;
+          bool covered = false;
+          for (int hop = 0; hop < kMaxCoverageHops && target != v; ++hop) {
+            const SacView& tv = views[target];
+            const DepthLookup hit = LookupDepth(tv, point);
+            if (!DepthAgrees(tv, hit, options)) break;
+            const uint32_t next =
+                chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
+            if (next == target) {
+              covered = true;
+              break;
+            }
+            target = next;
+          }
+          if (covered) {
             ++stats.collapsed;
             continue;
           }
+          ++stats.kept_uncovered;
         }
         if (options.min_consistent_views > 1) {
           int consistent = 1;

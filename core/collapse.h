@@ -2,10 +2,10 @@
 // Netlet collapse (Section III.B, "combine"): every pixel takes its cluster's label; same-labelled nodes collapse
 // onto the points of the selected view.
 //
-// Coverage rule (the paper is silent): a pixel of view a whose cluster chose view L != a is dropped only when view
-// L actually emits that surface: the pixel's point projects into L onto a valid depth that agrees with it, and the
-// cluster there chose L itself. Otherwise the pixel is emitted from its own view. So no surface patch observed
-// consistently is lost to the collapse.
+// Coverage rule (the paper is silent): a pixel of view a whose cluster chose view L != a is dropped only when a
+// view actually emits that surface: the pixel's point projects into L onto a valid depth that agrees with it, and
+// the cluster there chose L itself — or chose L2, and the same holds in L2 (up to 4 hops, never back to a).
+// Otherwise the pixel is emitted from its own view. So no surface patch observed consistently is lost.
 // Outliers: an emitted point must agree with at least min_consistent_views depth maps (its own included) among
 // its view's neighbours; blunders and floaters seen by one view only are removed.
 #include <cstdint>
@@ -21,11 +21,13 @@ namespace sacfuse {
 struct CollapseStats {
   uint64_t input_pixels = 0;      // valid depth pixels
   uint64_t collapsed = 0;         // dropped: covered by the view their cluster chose
+  uint64_t kept_uncovered = 0;    // their cluster chose another view, which does not emit them: kept (coverage)
   uint64_t outliers = 0;          // dropped: too few consistent views
   uint64_t emitted = 0;
   CollapseStats& operator+=(const CollapseStats& o) {
     input_pixels += o.input_pixels;
     collapsed += o.collapsed;
+    kept_uncovered += o.kept_uncovered;
     outliers += o.outliers;
     emitted += o.emitted;
     return *this;

@@ -4,9 +4,13 @@
 // edges join members closer than tau with weight exp(-distance) (Eq. 3).
 //
 // The paper builds one point group per node, so groups overlap and a node would be labelled many times. We
-// partition instead: seeds are visited in a deterministic order (most correspondences first, then node id), and a
-// Netlet takes the seed plus those of its correspondents that no earlier Netlet took and that lie within tau.
+// partition instead, deterministically:
+//  1. seeds are visited by most correspondences first, then node id; a Netlet takes the seed plus those of its
+//     correspondents (one per view) that no earlier Netlet took and that lie within tau;
+//  2. a node left alone joins the Netlet of its first correspondent within tau (Netlets then hold several nodes
+//     of one view), up to max_members, so that it can still collapse instead of staying a singleton.
 // Every valid node belongs to exactly one Netlet, so labels are unambiguous and Netlets solve independently.
+// The candidate labels of a Netlet are the distinct views of its members.
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +35,11 @@ struct Netlets {
   const uint32_t* members_of(size_t n) const { return members.data() + member_offsets[n]; }
 };
 
-Netlets BuildNetlets(const NodeTable& nodes, const Correspondences& correspondences, double tau_m);
+Netlets BuildNetlets(const NodeTable& nodes, const Correspondences& correspondences, double tau_m,
+                     size_t max_members = 24);
+
+// The paper's own construction (Algorithm 1): one Netlet per valid node, made of the node (member 0) and its
+// correspondents within tau. Netlets overlap; each decides only its centre's label.
+Netlets BuildNodeNetlets(const NodeTable& nodes, const Correspondences& correspondences, double tau_m);
 
 }  // namespace sacfuse

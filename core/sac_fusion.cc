@@ -40,7 +40,9 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   stats.mean_correspondences =
       stats.valid_nodes > 0 ? static_cast<double>(correspondences.node_ids.size()) / stats.valid_nodes : 0.0;
   timer.Mark("correspondences");
-  const Netlets netlets = BuildNetlets(nodes, correspondences, options.tau_m);
+  const bool per_node = options.netlets == "node";
+  const Netlets netlets = per_node ? BuildNodeNetlets(nodes, correspondences, options.tau_m)
+                                   : BuildNetlets(nodes, correspondences, options.tau_m);
   timer.Mark("netlets");
   const std::vector<uint32_t> chosen = LabelNetlets(views, nodes, netlets, options, &stats.labeling);
   timer.Mark("labelling");

@@ -12,24 +12,58 @@
 namespace sacfuse {
 namespace {
 
-// Node-independent cost of each member's view as the Netlet's label (quality + agreement).
-std::vector<double> LabelBaseCosts(const std::vector<SacView>& views, const NodeTable& nodes, const uint32_t* members,
-                                   size_t n, const SacOptions& options) {
-  std::vector<double> cost(n, 0.0);
-  double min_gsd = 1e300;
-  for (size_t k = 0; k < n; ++k) min_gsd = std::min<double>(min_gsd, nodes.nodes[members[k]].gsd_m);
+// The candidate labels of a Netlet: its distinct views in member order, each with a representative member (the
+// first of that view: the seed, or a phase-1 correspondent).
+struct NetletLabels {
+  std::vector<uint32_t> views;
+  std::vector<size_t> representative;
+};
+
+NetletLabels DistinctViews(const NodeTable& nodes, const uint32_t* members, size_t n) {
+  NetletLabels labels;
   for (size_t k = 0; k < n; ++k) {
-    const SacNode& label_node = nodes.nodes[members[k]];
+    const uint32_t v = nodes.nodes[members[k]].view;
+    if (std::find(labels.views.begin(), labels.views.end(), v) == labels.views.end()) {
+      labels.views.push_back(v);
+      labels.representative.push_back(k);
+    }
+  }
+  return labels;
+}
+
+// Node-independent cost of each candidate view as a label (quality + agreement).
+std::vector<double> LabelBaseCosts(const std::vector<SacView>& views, const NodeTable& nodes, const uint32_t* members,
+                                   const NetletLabels& labels, const SacOptions& options) {
+  const size_t num_labels = labels.views.size();
+  std::vector<double> cost(num_labels, 0.0);
+  // Surface normal of the Netlet: the sum of the members' plane-fit normals (all face the cameras that see them).
+  Eigen::Vector3f normal = Eigen::Vector3f::Zero();
+  for (size_t l = 0; l < num_labels; ++l) normal += nodes.nodes[members[labels.representative[l]]].normal_in_world;
+  const bool has_normal = normal.squaredNorm() > 1e-6f;
+  if (has_normal) normal.normalize();
+  // Expected depth uncertainty of each view here: z^2 / f, divided by the cosine of the incidence angle
+  // (foreshortening: matching degrades on surfaces seen at grazing angles).
+  std::vector<double> sigma(num_labels);
+  double min_sigma = 1e300;
+  for (size_t l = 0; l < num_labels; ++l) {
+    const SacNode& r = nodes.nodes[members[labels.representative[l]]];
+    const double cos_incidence = has_normal ? std::abs(normal.dot(r.ray_in_world)) : 1.0;
+    sigma[l] = r.sigma_rel / std::max(cos_incidence, options.min_incidence_cos);
+    min_sigma = std::min(min_sigma, sigma[l]);
+  }
+  for (size_t l = 0; l < num_labels; ++l) {
+    const SacNode& label_node = nodes.nodes[members[labels.representative[l]]];
     size_t agree = 0;
-    for (size_t m = 0; m < n; ++m) {
-      if (m == k) continue;
-      const SacView& other = views[nodes.nodes[members[m]].view];
+    for (size_t m = 0; m < num_labels; ++m) {
+      if (m == l) continue;
+      const SacView& other = views[labels.views[m]];
       agree += DepthAgreesStrictly(other, LookupDepth(other, label_node.point_in_world), options.agreement_tolerance_gsd)
                    ? 1
                    : 0;
     }
-    const double agreement = n > 1 ? static_cast<double>(agree) / (n - 1) : 1.0;
-    cost[k] = options.quality_weight * (label_node.gsd_m / min_gsd - 1.0) + options.agreement_weight * (1.0 - agreement);
+    const double agreement = num_labels > 1 ? static_cast<double>(agree) / (num_labels - 1) : 1.0;
+    cost[l] = options.quality_weight * (sigma[l] / min_sigma - 1.0) +
+              options.agreement_weight * (1.0 - agreement);
   }
   return cost;
 }
@@ -58,43 +92,49 @@ std::vector<uint32_t> LabelNetlets(const std::vector<SacView>& views, const Node
     tbb::parallel_for(size_t{0}, netlets.size(), [&](size_t t) {
       const size_t n = netlets.num_members(t);
       const uint32_t* members = netlets.members_of(t);
-      if (n == 1) {
+      const NetletLabels labels = DistinctViews(nodes, members, n);
+      const size_t num_labels = labels.views.size();
+      if (num_labels == 1) {
         optimal[t] = 1;
         return;
       }
-      // Label order: by base cost (quality mode) or member order (paper mode: seed first).
-      std::vector<double> base = paper ? std::vector<double>(n, 1.0) : LabelBaseCosts(views, nodes, members, n, options);
-      std::vector<size_t> perm(n);
+      // Label order: by base cost, then view index (quality); by view index alone (paper: every labelling with one
+      // shared label ties, and the same rule in every overlapping Netlet makes the choices agree).
+      const std::vector<double> base = paper ? std::vector<double>(num_labels, 1.0)
+                                             : LabelBaseCosts(views, nodes, members, labels, options);
+      std::vector<size_t> perm(num_labels);
       std::iota(perm.begin(), perm.end(), 0);
-      if (!paper) {
-        std::stable_sort(perm.begin(), perm.end(), [&](size_t a, size_t b) {
-          if (base[a] != base[b]) return base[a] < base[b];
-          return nodes.nodes[members[a]].view < nodes.nodes[members[b]].view;
-        });
-      }
+      std::stable_sort(perm.begin(), perm.end(), [&](size_t a, size_t b) {
+        if (base[a] != base[b]) return base[a] < base[b];
+        return labels.views[a] < labels.views[b];
+      });
       PottsMrf mrf;
       mrf.num_nodes = static_cast<int>(n);
-      mrf.num_labels = static_cast<int>(n);
-      mrf.unary.resize(n * n);
+      mrf.num_labels = static_cast<int>(num_labels);
+      mrf.unary.resize(n * num_labels);
       for (size_t i = 0; i < n; ++i) {
         const SacNode& node = nodes.nodes[members[i]];
-        for (size_t l = 0; l < n; ++l) {
-          const size_t k = perm[l];
-          double u = base[k];
+        for (size_t l = 0; l < num_labels; ++l) {
+          const uint32_t label_view = labels.views[perm[l]];
+          double u = base[perm[l]];
           if (!paper) {
-            const double move = (node.point_in_world - nodes.nodes[members[k]].point_in_world).norm();
+            double move = 1e300;  // to the nearest member of the label's view
+            for (size_t m = 0; m < n; ++m) {
+              if (nodes.nodes[members[m]].view == label_view) {
+                move = std::min(move, (node.point_in_world - nodes.nodes[members[m]].point_in_world).norm());
+              }
+            }
             u += options.displacement_weight * std::min(move / options.tau_m, 1.0);
             if (smooth && round > 0) {
               const auto& adj = adjacency[node.view][node.cluster];
               if (!adj.empty()) {
                 size_t same = 0;
-                const uint32_t label_view = nodes.nodes[members[k]].view;
                 for (uint32_t c : adj) same += previous[nodes.Id(node.view, c)] == label_view ? 1 : 0;
                 u -= options.smoothness_weight * static_cast<double>(same) / adj.size();
               }
             }
           }
-          mrf.unary[i * n + l] = u;
+          mrf.unary[i * num_labels + l] = u;
         }
       }
       for (uint32_t e = netlets.edge_offsets[t]; e < netlets.edge_offsets[t + 1]; ++e) {
@@ -103,7 +143,9 @@ std::vector<uint32_t> LabelNetlets(const std::vector<SacView>& views, const Node
       }
       const MrfSolution solution = SolvePotts(mrf);
       optimal[t] = solution.proven_optimal ? 1 : 0;
-      for (size_t i = 0; i < n; ++i) chosen[members[i]] = nodes.nodes[members[perm[solution.labels[i]]]].view;
+      // Per-node Netlets decide their centre only; partitions decide every member.
+      const size_t decided = options.netlets == "node" ? 1 : n;
+      for (size_t i = 0; i < decided; ++i) chosen[members[i]] = labels.views[perm[solution.labels[i]]];
     });
   }
 

@@ -14,8 +14,10 @@ void ValidateSacOptions(const SacOptions& o) {
   c.InRange("fusion.depth_tolerance_rel", o.depth_tolerance_rel, 0.0, 0.5);
   c.AtLeast("fusion.proximity_radius_m", o.proximity_radius_m, 0.0);
   c.Greater("fusion.tau_m", o.tau_m, 0.0);
+  c.OneOf("fusion.netlets", o.netlets, {"node", "partition"});
   c.OneOf("fusion.unary", o.unary, {"paper", "quality"});
   c.AtLeast("fusion.quality_weight", o.quality_weight, 0.0);
+  c.InRange("fusion.min_incidence_cos", o.min_incidence_cos, 0.01, 1.0);
   c.AtLeast("fusion.agreement_weight", o.agreement_weight, 0.0);
   c.Greater("fusion.agreement_tolerance_gsd", o.agreement_tolerance_gsd, 0.0);
   c.AtLeast("fusion.displacement_weight", o.displacement_weight, 0.0);

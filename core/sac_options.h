@@ -25,12 +25,17 @@ struct SacOptions {
   double proximity_radius_m = 0.0;      // proximity strategy search radius, metres; 0 = 1.5 x superpixel size
   // --- Netlets (Algorithm 1): nodes are superpixel centroids; edges join nodes closer than tau.
   double tau_m = 2.0;                   // edge threshold, metres (paper: 2 m); weight = exp(-distance)
+  //   node:      one Netlet per node (the node and its correspondents), as Algorithm 1; each Netlet decides its
+  //              centre's label only (Netlets overlap).
+  //   partition: disjoint Netlets (greedy seeds; see netlets.h); each Netlet decides all its members.
+  std::string netlets = "node";
   // --- Labelling: Eq. (2) per Netlet, solved exactly (branch and bound) or within 2x (alpha-expansion).
-  //   paper:   constant unary (= 1); ties go to the seed's own view (the paper leaves them to chance).
+  //   paper:   constant unary (= 1); ties go to the lowest view index (the paper leaves them to chance).
   //   quality: expected depth uncertainty of the candidate view (its local GSD), how many other views agree
   //            with it, and how far the node would move.
   std::string unary = "quality";
-  double quality_weight = 1.0;          // weight of (gsd / best gsd - 1)
+  double quality_weight = 1.0;          // weight of (sigma / best sigma - 1), sigma ~ depth^2 / (focal cos incidence)
+  double min_incidence_cos = 0.2;       // floor of cos(incidence) in that sigma (grazing views: 5x penalty at most)
   double agreement_weight = 1.0;        // weight of (1 - fraction of the other views agreeing)
   double agreement_tolerance_gsd = 1.5;  // stricter tolerance for "agreeing" in the quality unary, local GSDs
   double displacement_weight = 0.5;     // weight of min(|p_node - p_label| / tau, 1)

@@ -72,6 +72,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                 {"nodes_relabelled", s.sac.labeling.nodes_relabelled},
                 {"pixels_in", s.sac.collapse.input_pixels},
                 {"pixels_collapsed", s.sac.collapse.collapsed},
+                {"pixels_kept_uncovered", s.sac.collapse.kept_uncovered},
                 {"pixels_outliers", s.sac.collapse.outliers},
                 {"points_emitted", s.sac.collapse.emitted},
                 {"superpixels_computed", s.superpixels_computed},

@@ -4,6 +4,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "core/error.h"
 #include "jobs/superpixel_cache.h"
 
 namespace sacfuse {
@@ -16,6 +17,8 @@ SacBlockResult FuseWorkspaceWithSac(const ColmapWorkspace& workspace, const SacO
   std::vector<DepthMap> depths(views.size());
   std::vector<RgbImage> images(views.size());
   std::vector<SuperpixelMap> superpixels(views.size());
+  std::vector<ConsistencyGraph> graphs(views.size());
+  const bool dense = options.correspondence == "dense";
   SacBlockResult result;
   const auto start = std::chrono::steady_clock::now();
   for (size_t i = 0; i < views.size(); ++i) {
@@ -25,6 +28,15 @@ SacBlockResult FuseWorkspaceWithSac(const ColmapWorkspace& workspace, const SacO
     superpixels[i] = LoadOrComputeSuperpixels(superpixel_cache_dir, views[i].name, images[i], depths[i],
                                               options.superpixels, &computed);
     result.superpixels_computed += computed ? 1 : 0;
+    if (dense) {
+      if (!workspace.HasConsistencyGraph(views[i])) {
+        throw InputError(workspace.ConsistencyGraphPath(views[i]),
+                         "fusion.correspondence = dense needs the dense matcher's consistency graphs, and image " +
+                             views[i].name + " has none (COLMAP: --PatchMatchStereo.write_consistency_graph 1); use "
+                             "reprojection or proximity");
+      }
+      graphs[i] = workspace.ReadConsistencyGraph(views[i]);
+    }
     if (progress) progress("load + superpixels", i + 1, views.size());
   }
   result.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -33,7 +45,7 @@ SacBlockResult FuseWorkspaceWithSac(const ColmapWorkspace& workspace, const SacO
   std::vector<SacView> sac_views;
   sac_views.reserve(views.size());
   for (size_t i = 0; i < views.size(); ++i) {
-    sac_views.push_back(MakeSacView(views[i], &depths[i], &superpixels[i], &images[i]));
+    sac_views.push_back(MakeSacView(views[i], &depths[i], &superpixels[i], &images[i], dense ? &graphs[i] : nullptr));
   }
   result.stats = RunSacFusion(sac_views, options, sink, progress);
   return result;

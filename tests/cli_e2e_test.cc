@@ -1,0 +1,170 @@
+// End-to-end: the sacfuse binary as a user runs it — simulate a block, fuse it (union and SAC), score it; bad
+// configs and corrupt inputs fail with clear messages and leave no partial fused.las.
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/las_reader.h"
+#include "tests/support/test_support.h"
+
+namespace sacfuse {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::RunCommand;
+using testing::SacfuseBinary;
+using testing::TempDir;
+
+std::string Quote(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// One simulated tiny block shared by the tests of this file (simulation takes a few seconds).
+class CliEndToEndTest : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    dir_ = new TempDir();
+    std::string out;
+    const int code = RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " +
+                                    Quote(dir_->path() / "block"),
+                                &out);
+    ASSERT_EQ(code, 0) << out;
+  }
+  static void TearDownTestSuite() {
+    delete dir_;
+    dir_ = nullptr;
+  }
+  static fs::path Block() { return dir_->path() / "block"; }
+  static double BlockGsd() {
+    std::ifstream in(Block() / "metadata.json");
+    return nlohmann::json::parse(in).at("gsd_m").get<double>();
+  }
+
+  // Writes a config fusing the block with `method` into `out_dir`; returns its path.
+  static fs::path WriteConfig(const std::string& name, const std::string& method, const std::string& extra = "") {
+    const fs::path path = dir_->path() / (name + ".yaml");
+    std::ofstream(path) << "input: {format: colmap, path: " << Block().string() << "}\n"
+                        << "output: {dir: " << (dir_->path() / name).string() << "}\n"
+                        << "fusion:\n  method: " << method << "\n"
+                        << extra
+                        << "evaluation:\n  reference: " << (Block() / "reference.las").string() << "\n"
+                        << "  mask: " << (Block() / "eval_mask.png").string() << "\n  gsd_m: " << BlockGsd() << "\n";
+    return path;
+  }
+
+  static inline TempDir* dir_ = nullptr;
+};
+
+double F1FromJson(const fs::path& eval_json, size_t threshold_index) {
+  std::ifstream in(eval_json);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  return j.at("scores").at(threshold_index).at("f1").get<double>();
+}
+
+TEST_F(CliEndToEndTest, SimulateWritesACompleteWorkspace) {
+  for (const char* f : {"sparse/cameras.bin", "sparse/images.bin", "sparse/points3D.bin", "stereo/fusion.cfg",
+                        "reference.las", "eval_mask.png", "eval_mask.json", "metadata.json", "sacfuse.yaml"}) {
+    EXPECT_TRUE(fs::exists(Block() / f)) << f;
+  }
+}
+
+TEST_F(CliEndToEndTest, SacBeatsTheUnionOnF1WithFewerPoints) {
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("union", "union")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("sac", "sac")), &out), 0) << out;
+  EXPECT_NE(out.find("fused cloud:"), std::string::npos) << out;
+  EXPECT_NE(out.find("F1 @"), std::string::npos) << out;
+  const fs::path u = dir_->path() / "union", s = dir_->path() / "sac";
+  for (const fs::path& d : {u, s}) {
+    for (const char* f : {"fused.las", "sacfuse.effective.yaml", "run_report.json", "eval.json", "sacfuse.log"}) {
+      EXPECT_TRUE(fs::exists(d / f)) << (d / f);
+    }
+  }
+  const uint64_t union_points = LasReader((u / "fused.las").string()).header().point_count;
+  const uint64_t sac_points = LasReader((s / "fused.las").string()).header().point_count;
+  EXPECT_LT(sac_points, union_points * 85 / 100) << "SAC must remove at least 15% of the union's points";
+  for (size_t t = 0; t < 2; ++t) {
+    EXPECT_GT(F1FromJson(s / "eval.json", t), F1FromJson(u / "eval.json", t)) << "threshold " << t;
+  }
+}
+
+TEST_F(CliEndToEndTest, SuperpixelsAreReusedOnASecondRun) {
+  const fs::path config = WriteConfig("rerun", "sac");
+  std::string first, second;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &first), 0) << first;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &second), 0) << second;
+  EXPECT_NE(second.find("0 computed"), std::string::npos) << second;
+  // Same result both times.
+  std::ifstream a(dir_->path() / "rerun" / "eval.json");
+  EXPECT_TRUE(a.good());
+}
+
+TEST_F(CliEndToEndTest, ConfigErrorsExitTwoAndNameKeyAndLine) {
+  const fs::path path = dir_->path() / "bad.yaml";
+  std::ofstream(path) << "input:\n  path: x\n  fromat: colmap\noutput: {scale_m: 0.003}\n";
+  std::string out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(path), &out), 2);
+  EXPECT_NE(out.find("bad.yaml:3: input.fromat: unknown key"), std::string::npos) << out;
+}
+
+TEST_F(CliEndToEndTest, CorruptDepthMapFailsNamingTheFileAndLeavesNoLas) {
+  // Copy the block and truncate one depth map.
+  const fs::path copy = dir_->path() / "corrupt_block";
+  fs::copy(Block(), copy, fs::copy_options::recursive);
+  fs::path victim;
+  for (const auto& e : fs::recursive_directory_iterator(copy / "stereo" / "depth_maps")) {
+    if (e.is_regular_file()) {
+      victim = e.path();
+      break;
+    }
+  }
+  ASSERT_FALSE(victim.empty());
+  fs::resize_file(victim, fs::file_size(victim) / 2);
+  const fs::path config = dir_->path() / "corrupt.yaml";
+  std::ofstream(config) << "input: {path: " << copy.string() << "}\noutput: {dir: "
+                        << (dir_->path() / "corrupt_out").string() << "}\n";
+  std::string out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &out), 1) << out;
+  EXPECT_NE(out.find(victim.filename().string()), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(dir_->path() / "corrupt_out" / "fused.las"));
+  for (const auto& e : fs::directory_iterator(dir_->path() / "corrupt_out")) {
+    EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << "temporary file left: " << e.path();
+  }
+}
+
+TEST_F(CliEndToEndTest, EvalCommandPrintsATableAndJson) {
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("for_eval", "union")), &out), 0) << out;
+  const fs::path json = dir_->path() / "eval_cmd.json";
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + Quote(dir_->path() / "for_eval" / "fused.las") + " --reference " +
+                           Quote(Block() / "reference.las") + " --gsd 0.1 --tau-gsd 2,5 --json " + Quote(json),
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("F1 @ 0.200 m"), std::string::npos) << out;
+  EXPECT_TRUE(fs::exists(json));
+}
+
+TEST(CliTest, PrintDefaultsIsAValidCompleteConfig) {
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run --print-defaults", &out), 0) << out;
+  for (const char* key : {"input:", "format:", "output:", "scale_m:", "fusion:", "tau_m:", "superpixels:",
+                          "evaluation:", "resources:", "# LAS coordinate quantum, metres"}) {
+    EXPECT_NE(out.find(key), std::string::npos) << key;
+  }
+}
+
+TEST(CliTest, HelpAndVersion) {
+  std::string out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " version", &out), 0);
+  EXPECT_NE(out.find("sacfuse "), std::string::npos);
+  for (const char* cmd : {"run", "simulate", "eval"}) {
+    EXPECT_EQ(RunCommand(SacfuseBinary() + " " + cmd + " --help", &out), 0) << cmd;
+    EXPECT_NE(out.find("--"), std::string::npos) << cmd;
+  }
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " frobnicate", &out), 2);
+}
+
+}  // namespace
+}  // namespace sacfuse
