@@ -70,14 +70,22 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           ++stats.kept_uncovered;
         }
         if (options.min_consistent_views > 1) {
-          int consistent = 1;
+          // Views that can observe the point: they agree, or they see through it (free space). Views where it is
+          // occluded (their surface lies in front) cannot judge it and are not counted.
+          int agree = 1, observers = 0;
           for (const uint32_t b : neighbors[v]) {
-            if (DepthAgrees(views[b], LookupDepth(views[b], point), options) &&
-                ++consistent >= options.min_consistent_views) {
-              break;
+            const DepthLookup hit = LookupDepth(views[b], point);
+            if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
+            const double tolerance = DepthToleranceM(views[b], hit.z_m, options);
+            if (std::abs(hit.stored_depth_m - hit.z_m) <= tolerance) {
+              ++agree;
+              ++observers;
+            } else if (hit.stored_depth_m > hit.z_m + tolerance) {
+              ++observers;
             }
           }
-          if (consistent < options.min_consistent_views) {
+          const int required = std::min(options.min_consistent_views, std::max(2, 1 + observers));
+          if (agree < required) {
             ++stats.outliers;
             continue;
           }

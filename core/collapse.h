@@ -6,8 +6,10 @@
 // view actually emits that surface: the pixel's point projects into L onto a valid depth that agrees with it, and
 // the cluster there chose L itself — or chose L2, and the same holds in L2 (up to 4 hops, never back to a).
 // Otherwise the pixel is emitted from its own view. So no surface patch observed consistently is lost.
-// Outliers: an emitted point must agree with at least min_consistent_views depth maps (its own included) among
-// its view's neighbours; blunders and floaters seen by one view only are removed.
+// Outliers: an emitted point must agree with min(min_consistent_views, max(2, 1 + observers)) depth maps (its own
+// included) among its view's neighbours, where observers are the neighbours that agree or see through the point
+// (free space); neighbours in which it is occluded cannot judge it. So blunders, floaters and points seen by one
+// view only are removed, while surfaces that only two views can see are kept when those two agree.
 #include <cstdint>
 #include <vector>
 

@@ -20,7 +20,7 @@ struct SacOptions {
   std::string correspondence = "reprojection";
   // "Same surface" tolerance for correspondences, collapse coverage and the outlier test, in units of the local
   // GSD (depth / focal), plus a fraction of the depth (COLMAP's 1 % would be 0.01).
-  double depth_tolerance_gsd = 4.0;
+  double depth_tolerance_gsd = 3.0;
   double depth_tolerance_rel = 0.0;
   double proximity_radius_m = 0.0;      // proximity strategy search radius, metres; 0 = 1.5 x superpixel size
   // --- Netlets (Algorithm 1): nodes are superpixel centroids; edges join nodes closer than tau.
@@ -42,7 +42,8 @@ struct SacOptions {
   double smoothness_weight = 0.0;       // bonus for the label of adjacent clusters of the same view (0 = off)
   int smoothness_rounds = 2;            // Jacobi rounds of that cross-Netlet smoothness
   // --- Collapse and outliers.
-  int min_consistent_views = 2;         // a point must agree with this many views (its own included)
+  int min_consistent_views = 3;         // a point must agree with this many views (its own included), fewer
+                                        // where fewer can observe it (see collapse.h)
   // --- Superpixels (nodes).
   SuperpixelOptions superpixels;
 };

@@ -2,7 +2,7 @@
 // configs and corrupt inputs fail with clear messages and leave no partial fused.las.
 #include <filesystem>
 #include <fstream>
-#include <regex>
+#include <map>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -89,15 +89,48 @@ TEST_F(CliEndToEndTest, SacBeatsTheUnionOnF1WithFewerPoints) {
   }
 }
 
+// The same acceptance on a block made from real airborne LiDAR (Zurich, LAStools sample), cropped to 60 m.
+TEST(CliLidarTest, SacBeatsTheUnionOnALidarBlock) {
+  const auto shared = testing::SharedDir();
+  if (!shared) GTEST_SKIP() << "../shared research data not found (set SACFUSE_SHARED); skipping the LiDAR block";
+  const fs::path las = *shared / "research-data" / "lidar" / "lastools" / "zurich.las";
+  if (!fs::exists(las)) GTEST_SKIP() << las << " not found";
+  TempDir dir;
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 5 --area 60 --from-las " + Quote(las) +
+                           " --out " + Quote(dir / "block"),
+                       &out),
+            0)
+      << out;
+  std::map<std::string, std::pair<uint64_t, std::vector<double>>> results;
+  for (const std::string method : {"union", "sac"}) {
+    const fs::path config = dir / (method + ".yaml");
+    std::ofstream(config) << "input: {path: " << (dir / "block").string() << "}\noutput: {dir: "
+                          << (dir / method).string() << "}\nfusion: {method: " << method << "}\n"
+                          << "evaluation: {reference: " << (dir / "block" / "reference.las").string()
+                          << ", mask: " << (dir / "block" / "eval_mask.png").string() << ", gsd_m: 0.2}\n";
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &out), 0) << out;
+    results[method] = {LasReader((dir / method / "fused.las").string()).header().point_count,
+                       {F1FromJson(dir / method / "eval.json", 0), F1FromJson(dir / method / "eval.json", 1)}};
+  }
+  EXPECT_LT(results["sac"].first, results["union"].first * 85 / 100);
+  for (size_t t = 0; t < 2; ++t) EXPECT_GT(results["sac"].second[t], results["union"].second[t]) << "threshold " << t;
+}
+
 TEST_F(CliEndToEndTest, SuperpixelsAreReusedOnASecondRun) {
   const fs::path config = WriteConfig("rerun", "sac");
   std::string first, second;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &first), 0) << first;
+  EXPECT_NE(first.find("0 reused"), std::string::npos) << first;
+  fs::copy_file(dir_->path() / "rerun" / "fused.las", dir_->path() / "first.las");
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &second), 0) << second;
   EXPECT_NE(second.find("0 computed"), std::string::npos) << second;
-  // Same result both times.
-  std::ifstream a(dir_->path() / "rerun" / "eval.json");
-  EXPECT_TRUE(a.good());
+  // Same result both times, byte for byte.
+  auto slurp = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(slurp(dir_->path() / "first.las"), slurp(dir_->path() / "rerun" / "fused.las"));
 }
 
 TEST_F(CliEndToEndTest, ConfigErrorsExitTwoAndNameKeyAndLine) {

@@ -1,5 +1,8 @@
 #include <filesystem>
+#include <algorithm>
+#include <cstdio>
 #include <iostream>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -14,6 +17,24 @@
 
 namespace sacfuse::cli {
 namespace {
+
+// The paper's Fig. 4 in one line: how few views supply most of the points after fusion.
+void PrintSourceViewSummary(const RunSummary& summary, std::ostream& out) {
+  std::vector<std::pair<uint64_t, std::string>> per_view;
+  for (const auto& v : summary.views) per_view.emplace_back(v.output_points, v.name);
+  std::sort(per_view.rbegin(), per_view.rend());
+  uint64_t total = 0, running = 0;
+  for (const auto& [n, name] : per_view) total += n;
+  size_t half = 0;
+  while (half < per_view.size() && running * 2 < total) running += per_view[half++].first;
+  out << "source views: " << half << " of " << per_view.size() << " views supply half of the points; top:";
+  for (size_t i = 0; i < per_view.size() && i < 5; ++i) {
+    char pct[32];
+    std::snprintf(pct, sizeof(pct), "%.1f%%", total ? 100.0 * per_view[i].first / total : 0.0);
+    out << " " << per_view[i].second << " (" << pct << ")";
+  }
+  out << "\n";
+}
 
 struct RunArgs {
   std::string config_path;
@@ -37,6 +58,7 @@ int RunCommand(const RunArgs& args) {
     const RunSummary summary = RunFusionJob(config, std::ref(progress));
     std::cout << "fused cloud: " << summary.las_path << " (" << summary.output_points << " points, "
               << summary.views.size() << " views, method " << summary.method << ")\n";
+    PrintSourceViewSummary(summary, std::cout);
     if (!config.evaluation.reference.empty()) {
       EvalRequest request;
       request.result_las = summary.las_path;

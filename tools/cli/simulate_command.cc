@@ -1,5 +1,6 @@
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -24,6 +25,7 @@ struct SimulateArgs {
   double error_scale = 1.0;
   bool no_obliques = false;
   bool write_truth = false;
+  std::optional<bool> consistency_graphs;  // unset = the preset's default
   double area_m = 0.0;
 };
 
@@ -54,6 +56,7 @@ int Simulate(const SimulateArgs& args) {
     options.errors.scale = args.error_scale;
     options.obliques = !args.no_obliques;
     options.write_truth = args.write_truth;
+    if (args.consistency_graphs) options.write_consistency_graphs = *args.consistency_graphs;
     ValidateSimOptions(options);
     SetupLogging("info", (std::filesystem::path(args.out_dir) / "simulate.log").string());
     spdlog::info("simulating preset '{}' (seed {}) into {}", options.preset, options.seed, args.out_dir);
@@ -64,6 +67,7 @@ int Simulate(const SimulateArgs& args) {
               << "  views: " << s.num_views << " (" << s.num_nadir << " nadir, " << s.num_oblique << " oblique)\n"
               << "  depth pixels: " << s.depth_pixels << ", reference points: " << s.reference_points
               << ", sparse points: " << s.sparse_points << "\n"
+              << "  consistency graphs: " << s.consistency_graphs << "\n"
               << "  reference: " << s.reference_las << "\n  eval mask: " << s.eval_mask_png << "\n"
               << "  metadata: " << s.metadata_json << "\n"
               << "  run it: sacfuse run " << (std::filesystem::path(args.out_dir) / "sacfuse.yaml").string() << "\n"
@@ -91,6 +95,13 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_flag("--no-obliques", args->no_obliques, "Nadir camera only");
   cmd->add_flag("--write-truth", args->write_truth, "Also write truth/: error-free depth maps with true poses");
+  auto* graphs_on = cmd->add_flag_callback(
+      "--consistency-graphs", [args] { args->consistency_graphs = true; },
+      "Write stereo/consistency_graphs/ (COLMAP dense-matching consistency; default: on for tiny and small)");
+  auto* graphs_off = cmd->add_flag_callback(
+      "--no-consistency-graphs", [args] { args->consistency_graphs = false; },
+      "Do not write stereo/consistency_graphs/ (default: off for medium and dortmund)");
+  graphs_on->excludes(graphs_off);
   cmd->callback([args, exit_code] { *exit_code = Simulate(*args); });
 }
 
