@@ -117,6 +117,22 @@ TEST(CliLidarTest, SacBeatsTheUnionOnALidarBlock) {
   for (size_t t = 0; t < 2; ++t) EXPECT_GT(results["sac"].second[t], results["union"].second[t]) << "threshold " << t;
 }
 
+// Strategy 1 (dense matching): the simulator writes COLMAP consistency graphs for tiny; SAC fuses with them.
+TEST_F(CliEndToEndTest, DenseCorrespondencesFromConsistencyGraphs) {
+  ASSERT_TRUE(fs::exists(Block() / "stereo" / "consistency_graphs"));
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " +
+                           Quote(WriteConfig("dense", "sac", "  correspondence: dense\n")),
+                       &out),
+            0)
+      << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("union_for_dense", "union")), &out), 0) << out;
+  for (size_t t = 0; t < 2; ++t) {
+    EXPECT_GT(F1FromJson(dir_->path() / "dense" / "eval.json", t),
+              F1FromJson(dir_->path() / "union_for_dense" / "eval.json", t));
+  }
+}
+
 TEST_F(CliEndToEndTest, SuperpixelsAreReusedOnASecondRun) {
   const fs::path config = WriteConfig("rerun", "sac");
   std::string first, second;

@@ -44,7 +44,8 @@ struct RunArgs {
 
 int RunCommand(const RunArgs& args) {
   if (args.print_defaults) {
-    std::cout << DumpJobConfig(JobConfig{}, /*with_comments=*/true);
+    const JobConfig defaults;
+    std::cout << DumpJobConfig(defaults, /*with_comments=*/true);
     return kExitOk;
   }
   SetupLogging("info");

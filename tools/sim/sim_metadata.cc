@@ -61,6 +61,7 @@ std::string SimOptionsJson(const SimOptions& o) {
       {"ambient", o.ambient},
       {"city_rotation_deg", o.city_rotation_deg},
       {"las_cell_m", o.las_cell_m},
+      {"write_consistency_graphs", o.write_consistency_graphs},
   };
   return j.dump();
 }

@@ -37,6 +37,7 @@ SimOptions SimPreset(const std::string& name) {
     o.side_overlap = 0.4;
     o.max_nadir_views = 16;
     o.max_oblique_views = 40;
+    o.write_consistency_graphs = false;  // 1.1 GB and ~14 s the demo does not need; --consistency-graphs for it
   } else if (name == "medium") {
     // 400 x 400 m, 100 views (25 nadir + 75 oblique) of 2000 x 1500 px at 10 cm GSD with the Dortmund optics
     // (50 / 80 mm, 6 um, 833 m above ground), 60/50 overlap.
@@ -49,6 +50,7 @@ SimOptions SimPreset(const std::string& name) {
     o.side_overlap = 0.5;
     o.max_nadir_views = 25;
     o.max_oblique_views = 75;
+    o.write_consistency_graphs = false;  // cost, see sim_options.h
   } else if (name == "dortmund") {
     // Table II of the paper: 16 nadir + 43 oblique views, 6132 x 8176 px (obliques 8176 x 6132), 50/80 mm,
     // 6 um pixels, 75/80 overlap, 10 cm GSD (833 m above ground), ~1 km2. Not for tests: hours, < 3 GB.
@@ -61,6 +63,7 @@ SimOptions SimPreset(const std::string& name) {
     o.side_overlap = 0.80;
     o.max_nadir_views = 16;
     o.max_oblique_views = 43;
+    o.write_consistency_graphs = false;  // cost, see sim_options.h
   } else {
     std::string names;
     for (const auto& n : SimPresetNames()) names += (names.empty() ? "" : ", ") + n;

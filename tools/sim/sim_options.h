@@ -80,6 +80,12 @@ struct SimOptions {
   double ambient = 0.35;                 // ambient share of the light, 0..1
   double city_rotation_deg = 15.0;       // street grid of the procedural city against east, degrees
   double las_cell_m = 0.0;               // DSM cell of a --from-las scene, metres (0 = from the point density)
+  // Also write stereo/consistency_graphs/<name>.geometric.bin (COLMAP's patch_match_stereo with
+  // --PatchMatchStereo.write_consistency_graph 1; input of SAC's dense-correspondence strategy), computed after
+  // all depth maps by reprojecting every valid pixel into up to 20 overlapping views (consistency_graphs.h).
+  // On for tiny; off for small (1.1 GB, ~14 s), medium and dortmund: the pass costs about 20 reprojections per depth pixel
+  // and holds 21 depth maps in memory (about 4 GB at dortmund size), and the graphs are a few bytes per pixel.
+  bool write_consistency_graphs = true;
 };
 
 // Preset names (details in sim_options.cc): "tiny" (60 m, 20 views of 320x240 px at 20 cm GSD; about a second,

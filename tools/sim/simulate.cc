@@ -16,6 +16,7 @@
 #include "io/geo_mask_io.h"
 #include "tools/sim/city_layout.h"
 #include "tools/sim/city_scene.h"
+#include "tools/sim/consistency_graphs.h"
 #include "tools/sim/depth_errors.h"
 #include "tools/sim/depth_normals.h"
 #include "tools/sim/flight_plan.h"
@@ -76,6 +77,26 @@ struct Workspace {
     WriteColmapStereoConfigs(root, names);
   }
 };
+
+// The main workspace's views in images.bin order, i.e. the image indices COLMAP's consistency graphs store.
+// Workspace::AddView appends loop view v as images[v] with image_id v + 1, WriteColmapModelBinary writes the
+// images in vector order and fusion.cfg lists the same names in the same order: image index == view index.
+std::vector<View> ModelViews(const ColmapModel& model) {
+  std::vector<View> views;
+  views.reserve(model.images.size());
+  for (const ColmapImage& image : model.images) {
+    const ColmapCamera& camera = model.cameras.at(image.camera_id);
+    View view;
+    view.index = static_cast<uint32_t>(views.size());
+    if (image.image_id != view.index + 1) throw Error("sim: images.bin order differs from the view order");
+    view.name = image.name;
+    view.camera = {static_cast<int>(camera.width), static_cast<int>(camera.height), camera.params[0],
+                   camera.params[1],                camera.params[2],                camera.params[3]};
+    view.cam_from_world = {image.cam_from_world_rotation, image.cam_from_world_translation};
+    views.push_back(std::move(view));
+  }
+  return views;
+}
 
 Json ViewJson(uint32_t index, const PlannedView& view, const Rigid3d& written, const PoseError& pose_error,
               const ViewErrorModel& model, const DepthErrorReport& report, const PinholeCamera& depth_camera,
@@ -231,6 +252,21 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
   report("sparse", 1, 1);
   WriteGeoMask(summary.eval_mask_png, coverage.Mask(2), scene.crs);
 
+  Json consistency = nullptr;
+  if (o.write_consistency_graphs) {  // main workspace only: truth/ stays as it was
+    const auto cg_start = std::chrono::steady_clock::now();
+    report("consistency", 0, names.size());
+    const ConsistencyGraphSummary cg = WriteConsistencyGraphs(
+        out_dir, ModelViews(main_ws.model), {}, [&](size_t done, size_t total) { report("consistency", done, total); });
+    summary.consistency_graphs = static_cast<int>(cg.num_graphs);
+    consistency = {
+        {"graphs", cg.num_graphs},
+        {"valid_pixels", cg.valid_pixels},
+        {"pixels_with_views", cg.pixels_with_views},
+        {"entries", cg.entries},
+        {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - cg_start).count()}};
+  }
+
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Json meta{
       {"generator", "sacfuse simulate"},
@@ -259,7 +295,8 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
         {"depth_type", "geometric"},
         {"reference_las", "reference.las"},
         {"eval_mask", "eval_mask.png"},
-        {"truth_workspace", o.write_truth ? Json("truth") : Json(nullptr)}}},
+        {"truth_workspace", o.write_truth ? Json("truth") : Json(nullptr)},
+        {"consistency_graphs", o.write_consistency_graphs ? Json("stereo/consistency_graphs") : Json(nullptr)}}},
       {"eval_mask", {{"cell_m", cell}, {"min_views", 2}, {"fraction_of_area", coverage.FractionSeen(2)}}},
       {"summary",
        {{"num_views", summary.num_views},
@@ -270,6 +307,7 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
         {"sparse_candidates", sparse.num_candidates()},
         {"sparse_points", summary.sparse_points},
         {"seconds", summary.seconds}}},
+      {"consistency_graphs", consistency},
       {"views", views},
   };
   WriteFileAtomically(summary.metadata_json, meta.dump(1) + "\n");

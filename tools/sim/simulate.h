@@ -7,6 +7,8 @@
 //   stereo/depth_maps/<name>.geometric.bin  z-depth (float32, 0 = invalid) with the error models of
 //                                          depth_errors.h, at image size / depth_downsample
 //   stereo/normal_maps/<name>.geometric.bin camera-frame unit normals from that depth (depth_normals.h)
+//   stereo/consistency_graphs/<name>.geometric.bin (write_consistency_graphs) COLMAP dense-matching consistency
+//                                          of the written depth and poses (consistency_graphs.h)
 //   stereo/fusion.cfg, stereo/patch-match.cfg
 //   reference.las                          LAS 1.4 reference (reference_cloud.h)
 //   eval_mask.png (+ .json sidecar)        cells whose true surface point >= 2 views see (visibility.h)
@@ -30,6 +32,7 @@ struct SimSummary {
   uint64_t depth_pixels = 0;      // valid depth pixels written (all views)
   uint64_t reference_points = 0;
   uint64_t sparse_points = 0;     // points3D (seen by >= 2 views)
+  int consistency_graphs = 0;     // stereo/consistency_graphs files written (0 unless write_consistency_graphs)
   double seconds = 0.0;
   std::string workspace_dir;      // out_dir
   std::string reference_las;
@@ -37,7 +40,7 @@ struct SimSummary {
   std::string metadata_json;
 };
 
-// stage: "plan", "scene", "reference", "views", "sparse", "done".
+// stage: "plan", "scene", "reference", "views", "sparse", "consistency" (write_consistency_graphs), "done".
 using SimProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
 // Throws ConfigError listing every broken rule as "sim.<key> = <value>: <rule>".
