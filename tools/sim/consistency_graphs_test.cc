@@ -245,7 +245,8 @@ TEST(ConsistencyGraphsOptionTest, OffWritesNoGraphs) {
   EXPECT_TRUE(fs::exists(dir / "stereo/depth_maps"));
   EXPECT_FALSE(SimPreset("medium").write_consistency_graphs);
   EXPECT_FALSE(SimPreset("dortmund").write_consistency_graphs);
-  EXPECT_TRUE(SimPreset("small").write_consistency_graphs);
+  EXPECT_FALSE(SimPreset("small").write_consistency_graphs);
+  EXPECT_TRUE(SimPreset("tiny").write_consistency_graphs);
 }
 
 }  // namespace
