@@ -31,6 +31,11 @@ struct PinholeCamera {
     return {new_width, new_height, fx * sx, fy * sy, cx * sx, cy * sy};
   }
   bool IsValid() const { return width > 0 && height > 0 && fx > 0 && fy > 0; }
+
+  // Square pixels, principal point at the image centre.
+  static PinholeCamera Centered(int width_px, int height_px, double focal_px) {
+    return {width_px, height_px, focal_px, focal_px, 0.5 * width_px, 0.5 * height_px};
+  }
 };
 
 }  // namespace sacfuse

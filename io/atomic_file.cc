@@ -57,12 +57,17 @@ void WriteFileAtomically(const std::string& path, const std::string& contents) {
   FILE* f = std::fopen(tmp.c_str(), "wb");
   if (f == nullptr) throw Error(path + ": cannot create " + tmp + ": " + std::strerror(errno));
   const bool ok = std::fwrite(contents.data(), 1, contents.size(), f) == contents.size();
-  const bool closed = std::fclose(f) == 0;
-  if (!ok || !closed) {
-    std::remove(tmp.c_str());
-    throw Error(path + ": write failed (disk full?)");
+  CloseAndCommitTemporaryFile(f, ok, tmp, path);
+}
+
+void CloseAndCommitTemporaryFile(FILE* file, bool write_ok, const std::string& temp_path,
+                                 const std::string& final_path) {
+  const bool closed = std::fclose(file) == 0;
+  if (!write_ok || !closed) {
+    std::remove(temp_path.c_str());
+    throw Error(final_path + ": write failed (disk full?)");
   }
-  CommitTemporaryFile(tmp, path);
+  CommitTemporaryFile(temp_path, final_path);
 }
 
 }  // namespace sacfuse

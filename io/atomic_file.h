@@ -1,6 +1,7 @@
 #pragma once
 // Never leave a partial output where a complete one is expected: write to a temporary name in the same folder,
 // fsync, rename over the final path, fsync the folder.
+#include <cstdio>
 #include <string>
 
 namespace sacfuse {
@@ -11,6 +12,10 @@ std::string TemporaryPathFor(const std::string& path);
 void FsyncPath(const std::string& path);
 // Rename `temp_path` onto `final_path` after fsyncing it, then fsync the parent folder.
 void CommitTemporaryFile(const std::string& temp_path, const std::string& final_path);
+// Closes `file` (written to temp_path), and on success (write_ok and a clean close) commits it to final_path;
+// otherwise removes the temporary file and throws Error ("write failed").
+void CloseAndCommitTemporaryFile(FILE* file, bool write_ok, const std::string& temp_path,
+                                 const std::string& final_path);
 // Whole-file convenience: contents -> temp -> fsync -> rename. Creates parent folders.
 void WriteFileAtomically(const std::string& path, const std::string& contents);
 

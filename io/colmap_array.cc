@@ -218,12 +218,7 @@ void WriteColmapArray(const std::string& path, const Raster<float>& raster) {
       }
     }
   }
-  const bool closed = std::fclose(f) == 0;
-  if (!ok || !closed) {
-    std::remove(tmp.c_str());
-    throw Error(path + ": write failed (disk full?)");
-  }
-  CommitTemporaryFile(tmp, path);
+  CloseAndCommitTemporaryFile(f, ok, tmp, path);
 }
 
 }  // namespace sacfuse

@@ -82,6 +82,11 @@ ConsistencyGraph ReadColmapConsistencyGraph(const std::string& path) {
 
 void WriteColmapConsistencyGraph(const std::string& path, const ConsistencyGraph& graph) {
   std::string bytes = std::to_string(graph.width) + "&" + std::to_string(graph.height) + "&1&";
+  size_t records = 0;
+  for (size_t p = 0; p + 1 < graph.pixel_offsets.size(); ++p) {
+    records += graph.pixel_offsets[p + 1] > graph.pixel_offsets[p] ? 1 : 0;
+  }
+  bytes.reserve(bytes.size() + 4 * (3 * records + graph.view_indices.size()));
   auto put = [&bytes](int32_t v) {
     char b[4];
     std::memcpy(b, &v, 4);

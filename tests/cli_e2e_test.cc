@@ -142,11 +142,8 @@ TEST_F(CliEndToEndTest, SuperpixelsAreReusedOnASecondRun) {
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &second), 0) << second;
   EXPECT_NE(second.find("0 computed"), std::string::npos) << second;
   // Same result both times, byte for byte.
-  auto slurp = [](const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    return std::string(std::istreambuf_iterator<char>(in), {});
-  };
-  EXPECT_EQ(slurp(dir_->path() / "first.las"), slurp(dir_->path() / "rerun" / "fused.las"));
+  EXPECT_EQ(testing::ReadFileBytes(dir_->path() / "first.las"),
+            testing::ReadFileBytes(dir_->path() / "rerun" / "fused.las"));
 }
 
 TEST_F(CliEndToEndTest, ConfigErrorsExitTwoAndNameKeyAndLine) {

@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <stdexcept>
 #include <sys/wait.h>
@@ -48,6 +50,11 @@ std::string SacfuseBinary() {
   const char* env = std::getenv("SACFUSE_BIN");
   if (env == nullptr || *env == '\0') throw std::runtime_error("SACFUSE_BIN is not set (run the tests via ctest)");
   return env;
+}
+
+std::string ReadFileBytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 int RunCommand(const std::string& command, std::string* output) {

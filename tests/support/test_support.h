@@ -28,6 +28,9 @@ std::optional<std::filesystem::path> SharedDir();
 // Path of the built sacfuse binary ($SACFUSE_BIN), for end-to-end tests.
 std::string SacfuseBinary();
 
+// Whole file as bytes ("" when it cannot be read).
+std::string ReadFileBytes(const std::filesystem::path& path);
+
 // Runs a shell command, returns its exit code; stdout+stderr go to *output when given.
 int RunCommand(const std::string& command, std::string* output = nullptr);
 

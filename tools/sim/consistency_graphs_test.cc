@@ -22,12 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string ReadBytes(const fs::path& p) {
-  std::ifstream f(p, std::ios::binary);
-  std::ostringstream os;
-  os << f.rdbuf();
-  return os.str();
-}
+std::string ReadBytes(const fs::path& p) { return testing::ReadFileBytes(p); }
 
 // Nadir camera over a plane: camera x = world x, camera y = world -y, z down. 160 x 120 px, f = 400 px, 100 m
 // above the ground: GSD 0.25 m, depth tolerance max(1 m, 0.5 m) = 1 m.

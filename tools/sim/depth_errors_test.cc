@@ -16,16 +16,6 @@ namespace {
 constexpr double kGround = 100.0;
 constexpr double kHeight = 200.0;
 
-PinholeCamera Camera(int w, int h, double f) {
-  PinholeCamera c;
-  c.width = w;
-  c.height = h;
-  c.fx = c.fy = f;
-  c.cx = 0.5 * w;
-  c.cy = 0.5 * h;
-  return c;
-}
-
 Rigid3d NadirPose(double x, double y) {
   const Rigid3d world_from_cam{Eigen::Quaterniond(WorldFromCameraRotation({0, 1}, 0.0)),
                                Eigen::Vector3d(x, y, kGround + kHeight)};
@@ -58,7 +48,7 @@ SimErrorOptions AllOff() {
 
 TEST(DepthErrorsTest, DisabledIsExact) {
   const BoxScene plane(kGround);
-  const PinholeCamera cam = Camera(200, 150, 1000.0);
+  const PinholeCamera cam = PinholeCamera::Centered(200, 150, 1000.0);
   const DepthMap truth = RenderDepth(plane, cam, NadirPose(0, 0));
   SimErrorOptions o;
   o.enabled = false;
@@ -73,7 +63,7 @@ TEST(DepthErrorsTest, DisabledIsExact) {
 
 TEST(DepthErrorsTest, PoseErrorOffsetsTheCloudRigidly) {
   const BoxScene scene(kGround, Box2{-20, -15, 20, 15}, 12.0);
-  const PinholeCamera cam = Camera(240, 180, 1000.0);
+  const PinholeCamera cam = PinholeCamera::Centered(240, 180, 1000.0);
   const Rigid3d truth_pose = NadirPose(3.0, -2.0);
   const DepthMap depth = RenderDepth(scene, cam, truth_pose);
   SimErrorOptions o = AllOff();
@@ -118,7 +108,7 @@ TEST(DepthErrorsTest, PoseErrorOffsetsTheCloudRigidly) {
 
 TEST(DepthErrorsTest, StereoNoiseSigmaMatchesFormula) {
   const BoxScene plane(kGround);
-  const PinholeCamera cam = Camera(600, 450, 1500.0);
+  const PinholeCamera cam = PinholeCamera::Centered(600, 450, 1500.0);
   const DepthMap truth = RenderDepth(plane, cam, NadirPose(0, 0));
   SimErrorOptions o = AllOff();
   o.disparity_sigma_px = 0.5;
@@ -148,7 +138,7 @@ TEST(DepthErrorsTest, StereoNoiseSigmaMatchesFormula) {
 
 TEST(DepthErrorsTest, BlunderAndDropoutFractions) {
   const BoxScene plane(kGround);
-  const PinholeCamera cam = Camera(800, 600, 1500.0);
+  const PinholeCamera cam = PinholeCamera::Centered(800, 600, 1500.0);
   const DepthMap truth = RenderDepth(plane, cam, NadirPose(0, 0));
   SimErrorOptions o = AllOff();
   o.blunders_per_mpx = 400.0;
@@ -178,7 +168,7 @@ TEST(DepthErrorsTest, BlunderAndDropoutFractions) {
 
 TEST(DepthErrorsTest, FatteningAndOcclusionAtEdgesOnly) {
   const BoxScene scene(kGround, Box2{-15, -10, 15, 10}, 10.0);
-  const PinholeCamera cam = Camera(300, 220, 1000.0);
+  const PinholeCamera cam = PinholeCamera::Centered(300, 220, 1000.0);
   const DepthMap truth = RenderDepth(scene, cam, NadirPose(0, 0));
   SimErrorOptions o = AllOff();
   o.fattening_px = 2;
@@ -214,7 +204,7 @@ TEST(DepthErrorsTest, FatteningAndOcclusionAtEdgesOnly) {
 
 TEST(DepthErrorsTest, SameKeySameOutput) {
   const BoxScene plane(kGround);
-  const PinholeCamera cam = Camera(160, 120, 800.0);
+  const PinholeCamera cam = PinholeCamera::Centered(160, 120, 800.0);
   const DepthMap truth = RenderDepth(plane, cam, NadirPose(0, 0));
   const ViewErrorModel m = MakeViewErrorModel(SimErrorOptions(), false, cam.fx, 50.0, 1, true);
   EXPECT_TRUE(ApplyDepthErrors(truth, m, 1, nullptr).data == ApplyDepthErrors(truth, m, 1, nullptr).data);
@@ -223,7 +213,7 @@ TEST(DepthErrorsTest, SameKeySameOutput) {
 
 TEST(DepthNormalsTest, PlaneNormalsFaceTheCamera) {
   const BoxScene plane(kGround);
-  const PinholeCamera cam = Camera(120, 90, 600.0);
+  const PinholeCamera cam = PinholeCamera::Centered(120, 90, 600.0);
   const Rigid3d pose = NadirPose(0, 0);
   const DepthMap depth = RenderDepth(plane, cam, pose);
   const NormalMap n = NormalsFromDepth(depth, cam);

@@ -17,16 +17,6 @@ struct CameraSpec {
   PinholeCamera camera;
 };
 
-PinholeCamera MakeCamera(int width, int height, double focal_px) {
-  PinholeCamera c;
-  c.width = width;
-  c.height = height;
-  c.fx = c.fy = focal_px;
-  c.cx = 0.5 * width;
-  c.cy = 0.5 * height;
-  return c;
-}
-
 Rigid3d PoseAt(const Eigen::Vector3d& center, const Eigen::Matrix3d& world_from_cam) {
   Rigid3d world_from_camera{Eigen::Quaterniond(world_from_cam).normalized(), center};
   return world_from_camera.Inverse();
@@ -132,10 +122,10 @@ FlightPlan PlanFlight(const SimOptions& o, const Box2& area, double ground_z) {
 
   std::vector<CameraSpec> specs;
   specs.push_back({ViewKind::kNadir, Eigen::Vector2d(0, 1), 0.0,
-                   MakeCamera(o.nadir_width_px, o.nadir_height_px, plan.nadir_focal_px)});
+                   PinholeCamera::Centered(o.nadir_width_px, o.nadir_height_px, plan.nadir_focal_px)});
   if (o.obliques) {
     const double t = o.oblique_tilt_deg * M_PI / 180.0;
-    const PinholeCamera oc = MakeCamera(o.nadir_height_px, o.nadir_width_px, plan.oblique_focal_px);
+    const PinholeCamera oc = PinholeCamera::Centered(o.nadir_height_px, o.nadir_width_px, plan.oblique_focal_px);
     specs.push_back({ViewKind::kObliqueForward, Eigen::Vector2d(1, 0), t, oc});
     specs.push_back({ViewKind::kObliqueBackward, Eigen::Vector2d(-1, 0), t, oc});
     specs.push_back({ViewKind::kObliqueLeft, Eigen::Vector2d(0, 1), t, oc});

@@ -16,16 +16,6 @@ namespace {
 constexpr double kGround = 100.0;
 constexpr double kHeight = 120.0;  // camera above ground
 
-PinholeCamera Camera(int w, int h, double f) {
-  PinholeCamera c;
-  c.width = w;
-  c.height = h;
-  c.fx = c.fy = f;
-  c.cx = 0.5 * w;
-  c.cy = 0.5 * h;
-  return c;
-}
-
 Rigid3d PoseAt(const Eigen::Vector3d& center, const Eigen::Vector2d& toward, double tilt_deg) {
   const Rigid3d world_from_cam{Eigen::Quaterniond(WorldFromCameraRotation(toward, tilt_deg * M_PI / 180.0)), center};
   return world_from_cam.Inverse();
@@ -43,7 +33,7 @@ RenderedView Render(const Surface& s, const PinholeCamera& cam, const Rigid3d& p
 
 TEST(RenderTest, FlatPlaneNadirDepthIsFlyingHeight) {
   const BoxScene plane(kGround);
-  const PinholeCamera cam = Camera(160, 120, 500.0);
+  const PinholeCamera cam = PinholeCamera::Centered(160, 120, 500.0);
   const RenderedView rv = Render(plane, cam, PoseAt({500.3, 200.7, kGround + kHeight}, {0, 1}, 0.0));
   ASSERT_EQ(rv.depth.width, 160);
   double worst = 0.0;
@@ -57,7 +47,7 @@ TEST(RenderTest, FlatPlaneNadirDepthIsFlyingHeight) {
 
 TEST(RenderTest, DownsampledDepthIsExactToo) {
   const BoxScene plane(kGround);
-  const PinholeCamera cam = Camera(160, 120, 500.0);
+  const PinholeCamera cam = PinholeCamera::Centered(160, 120, 500.0);
   const RenderedView rv = Render(plane, cam, PoseAt({0.0, 0.0, kGround + kHeight}, {1, 0}, 30.0), 2);
   ASSERT_EQ(rv.depth.width, 80);
   ASSERT_EQ(rv.depth.height, 60);
@@ -74,7 +64,7 @@ TEST(RenderTest, DownsampledDepthIsExactToo) {
 TEST(RenderTest, BoxRoofDepthAndWallsInObliques) {
   const double h = 15.0;
   const BoxScene scene(kGround, Box2{-10.0, -8.0, 10.0, 8.0}, h);
-  const PinholeCamera cam = Camera(200, 150, 600.0);
+  const PinholeCamera cam = PinholeCamera::Centered(200, 150, 600.0);
   const RenderedView nadir = Render(scene, cam, PoseAt({0.0, 0.0, kGround + kHeight}, {0, 1}, 0.0));
   // The roof centre projects to the principal point: pixels (74..75, 99..100) around it.
   EXPECT_NEAR(nadir.depth.at(75, 100), kHeight - h, 1e-4);
@@ -110,7 +100,7 @@ TEST(RenderTest, CityDepthLiesOnTheTrueSurface) {
   p.ground_z = kGround;
   p.seed = 3;
   const CityScene city(GenerateCityLayout(p));
-  const PinholeCamera cam = Camera(320, 240, 600.0);
+  const PinholeCamera cam = PinholeCamera::Centered(320, 240, 600.0);
   const Eigen::Vector3d c(p.center_x, p.center_y, kGround + 100.0);
   struct Case {
     Eigen::Vector3d center;
