@@ -129,10 +129,11 @@ const ConfigSchema::Entry* ConfigSchema::Find(const std::string& key) const {
 }
 
 void ConfigSchema::ParseMap(const YAML::Node& node, const std::string& prefix, const std::string& source,
-                            std::vector<std::string>* errors) const {
+                            std::vector<std::string>* errors, std::map<std::string, int>* key_lines) const {
   for (const auto& kv : node) {
     const std::string name = kv.first.Scalar();
     const std::string key = prefix.empty() ? name : prefix + "." + name;
+    if (key_lines != nullptr) (*key_lines)[key] = kv.first.Mark().line + 1;
     const std::string where = source + ":" + std::to_string(kv.first.Mark().line + 1) + ": " + key + ": ";
     if (const Entry* e = Find(key)) {
       if (auto err = e->set(kv.second); !err.empty()) errors->push_back(where + err);
@@ -145,7 +146,7 @@ void ConfigSchema::ParseMap(const YAML::Node& node, const std::string& prefix, c
       if (!kv.second.IsMap()) {
         errors->push_back(where + "expected a mapping (a section), got " + NodeKind(kv.second));
       } else {
-        ParseMap(kv.second, key, source, errors);
+        ParseMap(kv.second, key, source, errors, key_lines);
       }
       continue;
     }
@@ -163,14 +164,15 @@ void ConfigSchema::ParseMap(const YAML::Node& node, const std::string& prefix, c
   }
 }
 
-void ConfigSchema::Parse(const YAML::Node& root, const std::string& source) const {
+void ConfigSchema::Parse(const YAML::Node& root, const std::string& source,
+                         std::map<std::string, int>* key_lines) const {
   std::vector<std::string> errors;
   if (root.IsNull()) return;  // an empty file means all defaults
   if (!root.IsMap()) {
     throw ConfigError(source + ":" + std::to_string(root.Mark().line + 1) +
                       ": the config must be a YAML mapping (key: value), got " + NodeKind(root));
   }
-  ParseMap(root, "", source, &errors);
+  ParseMap(root, "", source, &errors, key_lines);
   if (!errors.empty()) {
     std::string msg = source + ": invalid configuration";
     for (const auto& e : errors) msg += "\n  " + e;

@@ -2,6 +2,7 @@
 // A table of YAML keys bound to struct fields: parse YAML into the fields with precise errors, dump the fields
 // back as commented YAML. Generic (knows nothing of sacfuse's options; job_config.cc fills it).
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,9 @@ class ConfigSchema {
   // Fills the bound fields from `root` (a YAML mapping). Collects every problem: unknown keys (with the keys
   // allowed there), wrong types, values not in `allowed`; each message is "<source>:<line>: <key>: <problem>".
   // Throws ConfigError listing them all.
-  void Parse(const YAML::Node& root, const std::string& source) const;
+  // `key_lines`, when given, receives the 1-based line of every key present in the YAML.
+  void Parse(const YAML::Node& root, const std::string& source,
+             std::map<std::string, int>* key_lines = nullptr) const;
   // YAML text of the current field values, sections in registration order; comments carry the docs.
   std::string Dump(bool with_comments) const;
 
@@ -39,7 +42,7 @@ class ConfigSchema {
   };
   const Entry* Find(const std::string& key) const;
   void ParseMap(const YAML::Node& node, const std::string& prefix, const std::string& source,
-                std::vector<std::string>* errors) const;
+                std::vector<std::string>* errors, std::map<std::string, int>* key_lines) const;
   std::vector<Entry> entries_;
 };
 

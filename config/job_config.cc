@@ -1,7 +1,10 @@
 #include "config/job_config.h"
 
 #include <filesystem>
+#include <cmath>
 #include <fstream>
+#include <functional>
+#include <map>
 #include <sstream>
 
 #include <yaml-cpp/yaml.h>
@@ -80,6 +83,26 @@ std::string ResolvePath(const std::string& path, const std::string& base_dir) {
   return (std::filesystem::path(base_dir) / p).lexically_normal().string();
 }
 
+// Prefixes each message line that starts with a key present in the YAML with "<source>:<line>: ", so range errors
+// found after parsing point at the line like type errors do.
+std::string AnnotateWithLines(const std::string& message, const std::map<std::string, int>& key_lines,
+                              const std::string& source) {
+  std::istringstream in(message);
+  std::string line, out;
+  while (std::getline(in, line)) {
+    const size_t start = line.find_first_not_of(' ');
+    if (start != std::string::npos) {
+      const size_t end = line.find_first_of(" [", start);
+      const std::string key = line.substr(start, end == std::string::npos ? std::string::npos : end - start);
+      if (const auto it = key_lines.find(key); it != key_lines.end()) {
+        line = line.substr(0, start) + source + ":" + std::to_string(it->second) + ": " + line.substr(start);
+      }
+    }
+    out += (out.empty() ? "" : "\n") + line;
+  }
+  return out;
+}
+
 bool IsAllowedLasScale(double scale) {
   if (!(scale > 0)) return false;
   for (double mantissa : {1.0, 0.5, 0.25}) {
@@ -103,8 +126,8 @@ void ValidateJobConfig(const JobConfig& c) {
   check.Greater("evaluation.gsd_m", c.evaluation.gsd_m, 0.0);
   check.Require(!c.evaluation.tau_gsd.empty(), "evaluation.tau_gsd", "[]", "must list at least one threshold");
   for (double t : c.evaluation.tau_gsd) check.Greater("evaluation.tau_gsd[]", t, 0.0);
+  if (c.fusion.method == "sac") check.Absorb([&] { ValidateSacOptions(c.fusion.sac); });
   check.ThrowIfFailed(c.source_file.empty() ? "config" : c.source_file);
-  if (c.fusion.method == "sac") ValidateSacOptions(c.fusion.sac);
 }
 
 JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
@@ -116,13 +139,18 @@ JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   }
-  MakeSchema(&config).Parse(root, source_name);
+  std::map<std::string, int> key_lines;
+  MakeSchema(&config).Parse(root, source_name, &key_lines);
   config.input.path = ResolvePath(config.input.path, base_dir);
   config.output.dir = ResolvePath(config.output.dir, base_dir);
   config.evaluation.reference = ResolvePath(config.evaluation.reference, base_dir);
   config.evaluation.mask = ResolvePath(config.evaluation.mask, base_dir);
   config.fusion.superpixel_cache_dir = ResolvePath(config.fusion.superpixel_cache_dir, base_dir);
-  ValidateJobConfig(config);
+  try {
+    ValidateJobConfig(config);
+  } catch (const ConfigError& e) {
+    throw ConfigError(AnnotateWithLines(e.what(), key_lines, source_name));
+  }
   return config;
 }
 

@@ -60,8 +60,15 @@ TEST(JobConfigTest, EnumValueOutsideTheAllowedSet) {
 
 TEST(JobConfigTest, OutOfRangeValuesNameKeyValueAndRule) {
   const std::string err = ErrorOf("input: {path: ws}\noutput: {scale_m: 0.003}\nresources: {memory_gb: -1}\n");
-  EXPECT_NE(err.find("output.scale_m = 0.003: must be 10^k x {1, 0.5, 0.25}"), std::string::npos) << err;
-  EXPECT_NE(err.find("resources.memory_gb = -1: must be > 0"), std::string::npos) << err;
+  EXPECT_NE(err.find("job.yaml:2: output.scale_m = 0.003: must be 10^k x {1, 0.5, 0.25}"), std::string::npos) << err;
+  EXPECT_NE(err.find("job.yaml:3: resources.memory_gb = -1: must be > 0"), std::string::npos) << err;
+}
+
+TEST(JobConfigTest, FusionAndSuperpixelRulesAreReportedTogetherWithLines) {
+  const std::string err =
+      ErrorOf("input: {path: ws}\nfusion:\n  tau_m: 0\n  unary: quality\nsuperpixels:\n  region_size_px: 1\n");
+  EXPECT_NE(err.find("job.yaml:3: fusion.tau_m = 0: must be > 0"), std::string::npos) << err;
+  EXPECT_NE(err.find("job.yaml:6: superpixels.region_size_px = 1: must be in [2, 128]"), std::string::npos) << err;
 }
 
 TEST(JobConfigTest, MissingInputPathIsAnError) {

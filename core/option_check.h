@@ -2,6 +2,7 @@
 // Validation helpers for option structs: each failed rule becomes one message naming the YAML key, the value
 // and the rule, e.g. "fusion.tau_m = -1: must be > 0". All messages are collected and thrown together so a user
 // fixes the whole config in one go.
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -29,6 +30,8 @@ class OptionChecker {
   void OneOf(const std::string& key, const std::string& value, const std::vector<std::string>& allowed);
   void NotEmpty(const std::string& key, const std::string& value);
   void Require(bool ok, const std::string& key, const std::string& value, const std::string& rule);
+  // Adds the failed rules of a nested validator (a ConfigError whose message lists one rule per indented line).
+  void Absorb(const std::function<void()>& validate);
 
   bool ok() const { return errors_.empty(); }
   const std::vector<std::string>& errors() const { return errors_; }

@@ -12,6 +12,8 @@
 namespace sacfuse {
 namespace {
 
+constexpr double kCostQuantum = 1e-3;
+
 // The candidate labels of a Netlet: its distinct views in member order, each with a representative member (the
 // first of that view: the seed, or a phase-1 correspondent).
 struct NetletLabels {
@@ -64,6 +66,9 @@ std::vector<double> LabelBaseCosts(const std::vector<SacView>& views, const Node
     const double agreement = num_labels > 1 ? static_cast<double>(agree) / (num_labels - 1) : 1.0;
     cost[l] = options.quality_weight * (sigma[l] / min_sigma - 1.0) +
               options.agreement_weight * (1.0 - agreement);
+    // Differences below kCostQuantum are rounding noise (e.g. incidence angles of parallel views): quantising
+    // makes such views tie exactly, so the tie rule (lowest view index) decides alike in every Netlet.
+    cost[l] = std::round(cost[l] / kCostQuantum) * kCostQuantum;
   }
   return cost;
 }

@@ -24,8 +24,8 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("fusion.smoothness_weight", o.smoothness_weight, 0.0);
   c.InRange("fusion.smoothness_rounds", o.smoothness_rounds, 0, 20);
   c.InRange("fusion.min_consistent_views", o.min_consistent_views, 1, 64);
+  c.Absorb([&] { ValidateSuperpixelOptions(o.superpixels); });
   c.ThrowIfFailed("fusion options");
-  ValidateSuperpixelOptions(o.superpixels);
 }
 
 }  // namespace sacfuse

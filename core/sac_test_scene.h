@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "core/point.h"
 #include "core/sac_view.h"
 #include "core/superpixels.h"
 

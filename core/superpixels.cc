@@ -301,8 +301,8 @@ void ValidateSuperpixelOptions(const SuperpixelOptions& o) {
   }
   if (o.min_valid_pixels < 1) errors.push_back(Rule("min_valid_pixels", o.min_valid_pixels, "must be >= 1"));
   if (errors.empty()) return;
-  std::string message;
-  for (const std::string& e : errors) message += (message.empty() ? "" : "; ") + e;
+  std::string message = "superpixel options: invalid configuration";
+  for (const std::string& e : errors) message += "\n  " + e;
   throw ConfigError(message);
 }
 
