@@ -63,6 +63,14 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddString("superpixels.algorithm", &sp.algorithm, "slic | slico | mslic", {"slic", "slico", "mslic"});
   s.AddInt("superpixels.block_size_px", &sp.block_size_px, "images are segmented in blocks of this size, px");
   s.AddFloat("superpixels.depth_weight", &sp.depth_weight, "weight of depth as an extra SLIC channel (0 = off)");
+  TilingOptions& t = c->tiling;
+  s.AddDouble("tiling.tile_size_m", &t.tile_size_m,
+              "geo-tile edge, metres; 0 = one tile covering everything (untiled); >= 0");
+  s.AddDouble("tiling.halo_m", &t.halo_m, "halo around each tile core, metres; >= 0");
+  s.AddInt("tiling.window_margin_px", &t.window_margin_px, "padding of each view's depth window, depth pixels");
+  s.AddDouble("tiling.z_min_m", &t.z_min_m,
+              "block height range, metres; only used when the sparse model has no points");
+  s.AddDouble("tiling.z_max_m", &t.z_max_m, "block height range, metres; > tiling.z_min_m");
   s.AddInt("resources.threads", &c->resources.threads, "worker threads; 0 = all cores");
   s.AddDouble("resources.memory_gb", &c->resources.memory_gb, "memory budget, GiB; > 0");
   s.AddString("evaluation.reference", &c->evaluation.reference,
@@ -127,6 +135,10 @@ void ValidateJobConfig(const JobConfig& c) {
   check.Require(!c.evaluation.tau_gsd.empty(), "evaluation.tau_gsd", "[]", "must list at least one threshold");
   for (double t : c.evaluation.tau_gsd) check.Greater("evaluation.tau_gsd[]", t, 0.0);
   if (c.fusion.method == "sac") check.Absorb([&] { ValidateSacOptions(c.fusion.sac); });
+  check.Absorb([&] { ValidateTilingOptions(c.tiling); });
+  check.Require(!(c.tiling.tile_size_m > 0 && c.fusion.method == "sac" && c.fusion.sac.correspondence == "dense"),
+                "fusion.correspondence", c.fusion.sac.correspondence,
+                "dense is not supported by tiled runs yet (tiling.tile_size_m > 0); use reprojection or proximity");
   check.ThrowIfFailed(c.source_file.empty() ? "config" : c.source_file);
 }
 

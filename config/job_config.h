@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/sac_options.h"
+#include "tiling/tile_grid.h"
 
 namespace sacfuse {
 
@@ -50,6 +51,7 @@ struct JobConfig {
   InputOptions input;
   OutputOptions output;
   FusionOptions fusion;
+  TilingOptions tiling;    // YAML: tiling.<field>; tile_size_m = 0 runs untiled
   ResourceOptions resources;
   EvaluationOptions evaluation;
   LogOptions log;

@@ -99,5 +99,19 @@ TEST(JobConfigTest, MissingFileIsAConfigError) {
   EXPECT_THROW(LoadJobConfig("/nonexistent/sacfuse.yaml"), ConfigError);
 }
 
+TEST(JobConfigTest, TilingKeysParseAndValidate) {
+  const JobConfig c = ParseJobConfig(
+      "input: {path: ws}\ntiling: {tile_size_m: 250, halo_m: 8, z_min_m: -5, z_max_m: 400}\n", "job.yaml", "/base");
+  EXPECT_DOUBLE_EQ(c.tiling.tile_size_m, 250.0);
+  EXPECT_DOUBLE_EQ(c.tiling.halo_m, 8.0);
+  EXPECT_EQ(c.tiling.window_margin_px, 16);
+  EXPECT_DOUBLE_EQ(JobConfig().tiling.tile_size_m, 0.0);  // untiled by default
+  const std::string err = ErrorOf("input: {path: ws}\ntiling:\n  tile_size_m: -1\n  halo_m: -2\n");
+  EXPECT_NE(err.find("job.yaml:3: tiling.tile_size_m = -1: must be >= 0"), std::string::npos) << err;
+  EXPECT_NE(err.find("job.yaml:4: tiling.halo_m = -2: must be >= 0"), std::string::npos) << err;
+  const std::string dense = ErrorOf("input: {path: ws}\ntiling: {tile_size_m: 20}\nfusion: {correspondence: dense}\n");
+  EXPECT_NE(dense.find("dense is not supported by tiled runs"), std::string::npos) << dense;
+}
+
 }  // namespace
 }  // namespace sacfuse

@@ -98,7 +98,9 @@ TEST(SacLabelingTest, ThreeViewNetletsAvoidTheBiasedViewAndBreakTiesByIndex) {
       ++three_view;
       EXPECT_EQ(l.chosen[i], 0u) << "node " << i << " of view " << l.nodes.nodes[i].view;
     }
-    if (views.size() > 1) EXPECT_NE(l.chosen[i], 1u) << "the biased view was selected for node " << i;
+    if (views.size() > 1) {
+      EXPECT_NE(l.chosen[i], 1u) << "the biased view was selected for node " << i;
+    }
   }
   EXPECT_GT(three_view, 50u);
 }

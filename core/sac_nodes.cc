@@ -83,6 +83,10 @@ NodeTable BuildNodes(const std::vector<SacView>& views) {
       node.cluster = static_cast<uint32_t>(c);
       const float d = clusters[c].depth_m;
       if (!IsValidDepth(d)) continue;
+      // A centroid outside the raster (a window of a larger depth map: the cluster lies mostly outside it) does
+      // not become a node; its pixels in the window are the window's margin.
+      const float ccol = clusters[c].centroid_col, crow = clusters[c].centroid_row;
+      if (!(ccol >= 0.0f && crow >= 0.0f && ccol < view.depth->width && crow < view.depth->height)) continue;
       node.valid = true;
       node.depth_m = d;
       node.gsd_m = static_cast<float>(view.GsdAt(d));

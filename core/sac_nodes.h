@@ -20,7 +20,7 @@ struct SacNode {
   Eigen::Vector3f ray_in_world = Eigen::Vector3f::Zero();     // unit direction from the camera centre to the point
   uint32_t view = 0;      // index into the SacView vector
   uint32_t cluster = 0;
-  bool valid = false;     // false when the cluster has no representative depth
+  bool valid = false;     // false when the cluster has no representative depth or its centroid is off the raster
 };
 
 struct NodeTable {

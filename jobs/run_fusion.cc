@@ -13,6 +13,7 @@
 #include "io/las_writer.h"
 #include "jobs/resource_usage.h"
 #include "jobs/sac_block.h"
+#include "jobs/tiled_sac.h"
 #include "jobs/version.h"
 
 namespace sacfuse {
@@ -77,6 +78,10 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                 {"points_emitted", s.sac.collapse.emitted},
                 {"superpixels_computed", s.superpixels_computed},
                 {"stage_seconds", stages}};
+    if (s.tiles_run > 0) {
+      j["tiling"] = {{"tile_size_m", config.tiling.tile_size_m}, {"halo_m", config.tiling.halo_m},
+                     {"tiles_run", s.tiles_run}};
+    }
   }
   WriteFileAtomically(s.report_path, j.dump(2) + "\n");
 }
@@ -112,6 +117,7 @@ RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress) {
   for (size_t i = 0; i < views.size(); ++i) summary.views[i].name = views[i].name;
   if (config.fusion.method == "union") {
     spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
+    if (config.tiling.tile_size_m > 0) spdlog::info("tiling applies to sac only; the union runs untiled");
     for (size_t i = 0; i < views.size(); ++i) {
       const DepthMap depth = workspace.ReadDepthMap(views[i]);
       const RgbImage image = workspace.ReadImage(views[i]);
@@ -125,7 +131,19 @@ RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress) {
     const std::string cache_dir = config.fusion.superpixel_cache_dir.empty()
                                       ? (std::filesystem::path(config.output.dir) / "superpixels").string()
                                       : config.fusion.superpixel_cache_dir;
-    const SacBlockResult sac = FuseWorkspaceWithSac(workspace, config.fusion.sac, cache_dir, counting, progress);
+    SacBlockResult sac;
+    if (config.tiling.tile_size_m > 0) {
+      const TilePlan plan = BuildTilePlan(workspace, config.tiling);
+      spdlog::info("tiled SAC: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
+                   plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
+                   config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
+      const TiledSacResult tiled =
+          FuseWorkspaceTiled(workspace, plan, config.fusion.sac, cache_dir, counting, progress);
+      sac = tiled.block;
+      summary.tiles_run = tiled.tiles_run;
+    } else {
+      sac = FuseWorkspaceWithSac(workspace, config.fusion.sac, cache_dir, counting, progress);
+    }
     summary.has_sac_stats = true;
     summary.sac = sac.stats;
     summary.superpixels_computed = sac.superpixels_computed;

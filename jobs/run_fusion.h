@@ -30,6 +30,7 @@ struct RunSummary {
   bool has_sac_stats = false;  // method == sac
   SacStats sac;
   size_t superpixels_computed = 0;
+  size_t tiles_run = 0;  // tiled SAC (tiling.tile_size_m > 0): tiles with views; 0 = untiled
 };
 
 // Called as work proceeds: stage name, units done, units total.

@@ -13,26 +13,30 @@ std::string SuperpixelCachePath(const std::string& cache_dir, const std::string&
   return (std::filesystem::path(cache_dir) / (image_name + ".spx")).string();
 }
 
+bool SuperpixelCacheIsCurrent(const std::string& cache_dir, const std::string& image_name, int width, int height,
+                              const SuperpixelOptions& options) {
+  const std::string path = SuperpixelCachePath(cache_dir, image_name);
+  if (!std::filesystem::exists(path)) return false;
+  try {
+    const SuperpixelFileInfo info = ReadSuperpixelInfo(path);
+    return info.options_hash == SuperpixelOptionsHash(options) && info.width == width && info.height == height;
+  } catch (const Error& e) {
+    spdlog::warn("ignoring unreadable superpixel cache {}: {}", path, e.what());
+    return false;
+  }
+}
+
 SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const std::string& image_name,
                                        const RgbImage& image, const DepthMap& depth,
                                        const SuperpixelOptions& options, bool* computed) {
   const std::string path = SuperpixelCachePath(cache_dir, image_name);
-  const uint64_t hash = SuperpixelOptionsHash(options);
-  if (std::filesystem::exists(path)) {
-    try {
-      const SuperpixelFileInfo info = ReadSuperpixelInfo(path);
-      if (info.options_hash == hash && info.width == depth.width && info.height == depth.height) {
-        if (computed != nullptr) *computed = false;
-        return ReadSuperpixels(path);
-      }
-      spdlog::info("superpixels of {} are stale (options or size changed); recomputing", image_name);
-    } catch (const Error& e) {
-      spdlog::warn("ignoring unreadable superpixel cache {}: {}", path, e.what());
-    }
+  if (SuperpixelCacheIsCurrent(cache_dir, image_name, depth.width, depth.height, options)) {
+    if (computed != nullptr) *computed = false;
+    return ReadSuperpixels(path);
   }
   SuperpixelMap map = ComputeSuperpixels(image, depth, options);
   std::filesystem::create_directories(std::filesystem::path(path).parent_path());
-  WriteSuperpixels(path, map, hash);
+  WriteSuperpixels(path, map, SuperpixelOptionsHash(options));
   if (computed != nullptr) *computed = true;
   return map;
 }

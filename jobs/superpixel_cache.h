@@ -11,6 +11,10 @@ namespace sacfuse {
 // Cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.spx").
 std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name);
 
+// Whether a readable cache file exists for this image with the options fingerprint and raster size given.
+bool SuperpixelCacheIsCurrent(const std::string& cache_dir, const std::string& image_name, int width, int height,
+                              const SuperpixelOptions& options);
+
 // Loads the cached superpixels of a view, or computes and stores them. `*computed` tells which happened.
 SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const std::string& image_name,
                                        const RgbImage& image, const DepthMap& depth,

@@ -12,6 +12,7 @@ int Main(int argc, char** argv) {
   app.require_subcommand(1);
   int exit_code = kExitOk;
   AddRunCommand(app, &exit_code);
+  AddPlanCommand(app, &exit_code);
   AddSimulateCommand(app, &exit_code);
   AddEvalCommand(app, &exit_code);
   AddVersionCommand(app, &exit_code);

@@ -1,0 +1,137 @@
+#include "jobs/tile_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include "core/error.h"
+#include "io/atomic_file.h"
+#include "io/colmap_array.h"
+#include "jobs/version.h"
+
+namespace sacfuse {
+namespace {
+
+double Percentile(std::vector<double>& values, double q) {
+  const size_t k = static_cast<size_t>(std::floor(q * (values.size() - 1)));
+  std::nth_element(values.begin(), values.begin() + k, values.end());
+  return values[k];
+}
+
+nlohmann::json BoxJson(const Bounds2d& b) { return {b.min.x(), b.min.y(), b.max.x(), b.max.y()}; }
+
+ColmapDepthType DepthType(const JobConfig& config) {
+  return config.input.depth_type == "photometric" ? ColmapDepthType::kPhotometric : ColmapDepthType::kGeometric;
+}
+
+}  // namespace
+
+void BlockHeightRange(const ColmapModel& model, const TilingOptions& options, double* z_min_m, double* z_max_m,
+                      std::string* source) {
+  std::vector<double> z;
+  z.reserve(model.points3D.size());
+  for (const auto& [id, p] : model.points3D) {
+    if (std::isfinite(p.xyz.z())) z.push_back(p.xyz.z());
+  }
+  if (z.empty()) {
+    *z_min_m = options.z_min_m;
+    *z_max_m = options.z_max_m;
+    *source = "config";
+    return;
+  }
+  *z_min_m = Percentile(z, 0.02) - kSparseHeightPaddingM;
+  *z_max_m = Percentile(z, 0.98) + kSparseHeightPaddingM;
+  *source = "sparse points";
+}
+
+TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& options) {
+  ValidateTilingOptions(options);
+  double z_min = 0, z_max = 0;
+  std::string z_source;
+  BlockHeightRange(workspace.model(), options, &z_min, &z_max, &z_source);
+  const auto& views = workspace.views();
+  Bounds2d area;
+  for (const View& view : views) area.Extend(FootprintBounds(view, z_min, z_max));
+  if (area.IsEmpty()) {
+    throw InputError(workspace.dir(), "no view's footprint meets the height range [" + std::to_string(z_min) + ", " +
+                                          std::to_string(z_max) + "] m; cannot plan tiles");
+  }
+  TilePlan plan(TileGrid(area, options.tile_size_m, options.halo_m));
+  plan.options = options;
+  plan.z_min_m = z_min;
+  plan.z_max_m = z_max;
+  plan.z_source = z_source;
+  plan.depth_sizes.resize(views.size());
+  for (size_t v = 0; v < views.size(); ++v) {
+    const ColmapArrayShape shape = ReadColmapArrayShape(workspace.DepthMapPath(views[v]));
+    plan.depth_sizes[v] = {shape.width, shape.height};
+  }
+  for (const TileIndex& t : plan.grid.Tiles()) {
+    PlannedTile tile;
+    tile.index = t;
+    tile.id = TileGrid::Id(t);
+    tile.core = plan.grid.CoreBounds(t);
+    tile.halo = plan.grid.HaloBounds(t);
+    for (size_t v = 0; v < views.size(); ++v) {
+      const auto window = ViewWindowForBox(views[v], plan.depth_sizes[v].width, plan.depth_sizes[v].height,
+                                           tile.halo, z_min, z_max, options.window_margin_px);
+      if (!window) continue;
+      tile.views.push_back({static_cast<uint32_t>(v), *window});
+      tile.window_pixels += window->num_pixels();
+    }
+    tile.memory_bytes = tile.window_pixels * kTileBytesPerWindowPixel;
+    plan.tiles.push_back(std::move(tile));
+  }
+  return plan;
+}
+
+std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace) {
+  nlohmann::json tiles = nlohmann::json::array();
+  for (const PlannedTile& t : plan.tiles) {
+    nlohmann::json views = nlohmann::json::array();
+    for (const TileViewWindow& w : t.views) {
+      views.push_back({{"view", w.view},
+                       {"name", workspace.views()[w.view].name},
+                       {"window", {{"row_begin", w.window.row_begin},
+                                   {"row_end", w.window.row_end},
+                                   {"col_begin", w.window.col_begin},
+                                   {"col_end", w.window.col_end}}}});
+    }
+    tiles.push_back({{"id", t.id},
+                     {"core", BoxJson(t.core)},
+                     {"halo", BoxJson(t.halo)},
+                     {"views", views},
+                     {"window_pixels", t.window_pixels},
+                     {"memory_bytes", t.memory_bytes}});
+  }
+  const Bounds2d& area = plan.grid.area();
+  const nlohmann::json j = {{"version", VersionString()},
+                            {"tile_size_m", plan.options.tile_size_m},
+                            {"halo_m", plan.options.halo_m},
+                            {"window_margin_px", plan.options.window_margin_px},
+                            {"z_range_m", {plan.z_min_m, plan.z_max_m}},
+                            {"z_source", plan.z_source},
+                            {"area", BoxJson(area)},
+                            {"grid", {plan.grid.num_x(), plan.grid.num_y()}},
+                            {"bytes_per_window_pixel", kTileBytesPerWindowPixel},
+                            {"tiles", tiles}};
+  return j.dump(2) + "\n";
+}
+
+TilePlan PlanJob(const JobConfig& config, std::string* plan_path) {
+  ValidateJobConfig(config);
+  const ColmapWorkspace workspace(config.input.path, DepthType(config));
+  if (workspace.views().empty()) throw InputError(config.input.path, "the workspace has no images to plan");
+  TilePlan plan = BuildTilePlan(workspace, config.tiling);
+  const std::string path = (std::filesystem::path(config.output.dir) / "plan.json").string();
+  WriteFileAtomically(path, TilePlanJson(plan, workspace));
+  if (plan_path != nullptr) *plan_path = path;
+  spdlog::info("plan: {} tiles ({} x {}), z range [{:.1f}, {:.1f}] m from {}, written to {}", plan.tiles.size(),
+               plan.grid.num_x(), plan.grid.num_y(), plan.z_min_m, plan.z_max_m, plan.z_source, path);
+  return plan;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,67 @@
+#pragma once
+// `sacfuse plan`: which geo-tiles a job has, which views each tile needs and which window of each view's depth
+// raster, and roughly how much memory a tile's rasters take. Built from the sparse model and the depth-map
+// headers only (no raster is read), written as DIR/plan.json.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config/job_config.h"
+#include "io/colmap_workspace.h"
+#include "tiling/tile_grid.h"
+#include "tiling/tile_windows.h"
+
+namespace sacfuse {
+
+// Bytes a tile holds per depth-window pixel of one view: float32 depth (4) + int32 superpixel label (4) + RGB
+// colour resampled to the depth grid (3). SAC's per-node working memory and the transient full-image read are
+// not included (yet).
+constexpr uint64_t kTileBytesPerWindowPixel = 4 + 4 + 3;
+
+// Padding of the sparse points' 2nd..98th percentile height range, metres.
+constexpr double kSparseHeightPaddingM = 10.0;
+
+struct TileViewWindow {
+  uint32_t view = 0;      // view index
+  PixelWindow window;     // in the view's depth raster
+};
+
+struct PlannedTile {
+  TileIndex index;
+  std::string id;                      // "ix_iy"
+  Bounds2d core, halo;                 // core is half-open [min, max)
+  std::vector<TileViewWindow> views;   // in view order
+  uint64_t window_pixels = 0;          // sum over views
+  uint64_t memory_bytes = 0;           // window_pixels x kTileBytesPerWindowPixel
+};
+
+struct DepthRasterSize {
+  int width = 0, height = 0;
+};
+
+struct TilePlan {
+  explicit TilePlan(const TileGrid& g) : grid(g) {}
+  TileGrid grid;
+  TilingOptions options;
+  double z_min_m = 0.0, z_max_m = 0.0;
+  std::string z_source;                       // "sparse points" | "config"
+  std::vector<DepthRasterSize> depth_sizes;   // per view
+  std::vector<PlannedTile> tiles;             // grid order
+};
+
+// Height range of the block: 2nd..98th percentile of the sparse points' z padded by kSparseHeightPaddingM, or
+// the options' z_min_m/z_max_m when the model has no points. *source names which.
+void BlockHeightRange(const ColmapModel& model, const TilingOptions& options, double* z_min_m, double* z_max_m,
+                      std::string* source);
+
+// The plan of a workspace (reads only depth-map headers). Throws InputError when no view has a footprint.
+TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& options);
+
+// JSON text of a plan (view names included).
+std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace);
+
+// `sacfuse plan`: validates the config, builds the plan and writes <output.dir>/plan.json atomically.
+// Returns the plan; *plan_path receives the file written.
+TilePlan PlanJob(const JobConfig& config, std::string* plan_path = nullptr);
+
+}  // namespace sacfuse

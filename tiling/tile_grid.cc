@@ -1,0 +1,92 @@
+#include "tiling/tile_grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/option_check.h"
+
+namespace sacfuse {
+
+void ValidateTilingOptions(const TilingOptions& o) {
+  OptionChecker check;
+  check.AtLeast("tiling.tile_size_m", o.tile_size_m, 0.0);
+  check.AtLeast("tiling.halo_m", o.halo_m, 0.0);
+  check.AtLeast("tiling.window_margin_px", o.window_margin_px, 0);
+  check.Require(o.z_max_m > o.z_min_m, "tiling.z_max_m", OptionChecker::ToString(o.z_max_m),
+                "must be > tiling.z_min_m (" + OptionChecker::ToString(o.z_min_m) + ")");
+  check.ThrowIfFailed("tiling options");
+}
+
+TileGrid::TileGrid(const Bounds2d& area, double tile_size_m, double halo_m)
+    : area_(area), tile_size_m_(tile_size_m), halo_m_(halo_m), single_(tile_size_m == 0.0) {
+  if (area.IsEmpty()) throw Error("tile grid: the project area is empty");
+  if (!(tile_size_m >= 0.0) || !(halo_m >= 0.0)) throw Error("tile grid: tile size and halo must be >= 0");
+  if (single_) return;
+  kx0_ = static_cast<long long>(std::floor(area.min.x() / tile_size_m));
+  ky0_ = static_cast<long long>(std::floor(area.min.y() / tile_size_m));
+  // Fix rounding so that Edge(k0) <= min < Edge(k0 + 1) with the same formula CoreBounds uses.
+  while (Edge(kx0_) > area.min.x()) --kx0_;
+  while (Edge(kx0_ + 1) <= area.min.x()) ++kx0_;
+  while (Edge(ky0_) > area.min.y()) --ky0_;
+  while (Edge(ky0_ + 1) <= area.min.y()) ++ky0_;
+  num_x_ = static_cast<int>(AxisIndex(area.max.x(), kx0_) + 1);
+  num_y_ = static_cast<int>(AxisIndex(area.max.y(), ky0_) + 1);
+}
+
+long long TileGrid::AxisIndex(double v, long long k0) const {
+  long long k = static_cast<long long>(std::floor(v / tile_size_m_));
+  while (Edge(k) > v) --k;
+  while (Edge(k + 1) <= v) ++k;
+  return k - k0;
+}
+
+std::vector<TileIndex> TileGrid::Tiles() const {
+  std::vector<TileIndex> out;
+  out.reserve(size());
+  for (int iy = 0; iy < num_y_; ++iy) {
+    for (int ix = 0; ix < num_x_; ++ix) out.push_back({ix, iy});
+  }
+  return out;
+}
+
+std::string TileGrid::Id(const TileIndex& t) { return std::to_string(t.ix) + "_" + std::to_string(t.iy); }
+
+std::optional<TileIndex> TileGrid::Parse(const std::string& id) const {
+  int ix = 0, iy = 0;
+  char extra = 0;
+  if (std::sscanf(id.c_str(), "%d_%d%c", &ix, &iy, &extra) != 2) return std::nullopt;
+  if (ix < 0 || iy < 0 || ix >= num_x_ || iy >= num_y_ || Id({ix, iy}) != id) return std::nullopt;
+  return TileIndex{ix, iy};
+}
+
+Bounds2d TileGrid::CoreBounds(const TileIndex& t) const {
+  if (single_) return area_;
+  Bounds2d b;
+  b.min = {Edge(kx0_ + t.ix), Edge(ky0_ + t.iy)};
+  b.max = {Edge(kx0_ + t.ix + 1), Edge(ky0_ + t.iy + 1)};
+  return b;
+}
+
+Bounds2d TileGrid::HaloBounds(const TileIndex& t) const {
+  Bounds2d b = CoreBounds(t);
+  b.min.array() -= halo_m_;
+  b.max.array() += halo_m_;
+  return b;
+}
+
+bool TileGrid::CoreContains(const TileIndex& t, double x, double y) const {
+  if (single_) return true;
+  const Bounds2d b = CoreBounds(t);
+  return x >= b.min.x() && x < b.max.x() && y >= b.min.y() && y < b.max.y();
+}
+
+TileIndex TileGrid::TileOf(double x, double y) const {
+  if (single_) return {0, 0};
+  const long long ix = std::clamp<long long>(AxisIndex(x, kx0_), 0, num_x_ - 1);
+  const long long iy = std::clamp<long long>(AxisIndex(y, ky0_), 0, num_y_ - 1);
+  return {static_cast<int>(ix), static_cast<int>(iy)};
+}
+
+}  // namespace sacfuse

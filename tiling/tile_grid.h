@@ -1,0 +1,73 @@
+#pragma once
+// Geo-tiles: the project area cut into square tiles aligned to multiples of the tile size, each with a halo.
+// A tile's CORE is half-open ([min, max) in x and y), so every XY belongs to exactly one tile; SAC runs on the
+// HALO box (core grown by halo_m) so that points near a core border see the same neighbourhood as untiled, and
+// only points inside the core are kept (seam-free stitching).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tiling/footprint.h"
+
+namespace sacfuse {
+
+struct TilingOptions {
+  // Tile edge length, metres. 0 = one tile covering everything (untiled run); automatic sizing from the memory
+  // budget comes later. >= 0.
+  double tile_size_m = 0.0;
+  double halo_m = 5.0;           // halo around each tile core, metres; >= 0
+  int window_margin_px = 16;     // padding of each view's depth-raster window, depth pixels; >= 0
+  // Height range of the block, metres, used only when the sparse model has no points (otherwise the 2nd..98th
+  // percentile of the sparse points' z, padded by 10 m). z_max_m > z_min_m.
+  double z_min_m = 0.0;
+  double z_max_m = 100.0;
+};
+
+// Throws ConfigError listing every broken rule as "tiling.<field> = v: rule".
+void ValidateTilingOptions(const TilingOptions& options);
+
+struct TileIndex {
+  int ix = 0, iy = 0;  // 0-based column (x) and row (y) in the grid
+  bool operator==(const TileIndex& o) const { return ix == o.ix && iy == o.iy; }
+  bool operator!=(const TileIndex& o) const { return !(*this == o); }
+};
+
+class TileGrid {
+ public:
+  // A grid covering `area` with tiles of tile_size_m aligned to multiples of it (tile_size_m = 0: one tile equal
+  // to `area`). Throws Error for an empty area or a negative size.
+  TileGrid(const Bounds2d& area, double tile_size_m, double halo_m);
+
+  int num_x() const { return num_x_; }
+  int num_y() const { return num_y_; }
+  size_t size() const { return static_cast<size_t>(num_x_) * num_y_; }
+  // Tiles in grid order: row by row (iy), then ix.
+  std::vector<TileIndex> Tiles() const;
+  const Bounds2d& area() const { return area_; }
+
+  static std::string Id(const TileIndex& t);           // "ix_iy"
+  std::optional<TileIndex> Parse(const std::string& id) const;  // nullopt for a malformed or unknown id
+
+  // Half-open core [min, max): a point belongs to it when min <= p < max in x and y.
+  Bounds2d CoreBounds(const TileIndex& t) const;
+  Bounds2d HaloBounds(const TileIndex& t) const;  // core grown by halo_m on every side (closed box)
+  bool CoreContains(const TileIndex& t, double x, double y) const;
+  // The tile whose core holds (x, y); exactly one for any XY inside the grid. XY beyond the grid (points whose
+  // depth lies outside the planning height range) belong to the nearest border tile (clamped), so no point is
+  // ever lost or duplicated.
+  TileIndex TileOf(double x, double y) const;
+
+ private:
+  // Edge coordinate k (absolute multiple of tile size) along one axis; the single formula used everywhere.
+  double Edge(long long k) const { return static_cast<double>(k) * tile_size_m_; }
+  long long AxisIndex(double v, long long k0) const;
+
+  Bounds2d area_;
+  double tile_size_m_ = 0.0;
+  double halo_m_ = 0.0;
+  bool single_ = false;  // tile_size_m == 0
+  long long kx0_ = 0, ky0_ = 0;  // absolute index of the first column / row
+  int num_x_ = 1, num_y_ = 1;
+};
+
+}  // namespace sacfuse

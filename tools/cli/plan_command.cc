@@ -1,0 +1,56 @@
+// `sacfuse plan CONFIG`: the geo-tiles of a job, the views and depth windows each needs, and an estimate of the
+// memory each tile's rasters take; prints a table and writes <output.dir>/plan.json.
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "config/job_config.h"
+#include "core/error.h"
+#include "jobs/tile_plan.h"
+#include "tools/cli/cli_support.h"
+#include "tools/cli/commands.h"
+
+namespace sacfuse::cli {
+namespace {
+
+void PrintPlanTable(const TilePlan& plan, std::ostream& out) {
+  char line[256];
+  std::snprintf(line, sizeof(line), "%zu tiles (%d x %d), tile %.1f m, halo %.1f m, z [%.1f, %.1f] m (%s)\n",
+                plan.tiles.size(), plan.grid.num_x(), plan.grid.num_y(), plan.options.tile_size_m,
+                plan.options.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source.c_str());
+  out << line;
+  std::snprintf(line, sizeof(line), "%-10s %14s %14s %14s %14s %6s %12s %10s\n", "tile", "core x min", "core y min",
+                "core x max", "core y max", "views", "window px", "mem MiB");
+  out << line;
+  for (const PlannedTile& t : plan.tiles) {
+    std::snprintf(line, sizeof(line), "%-10s %14.2f %14.2f %14.2f %14.2f %6zu %12llu %10.1f\n", t.id.c_str(),
+                  t.core.min.x(), t.core.min.y(), t.core.max.x(), t.core.max.y(), t.views.size(),
+                  static_cast<unsigned long long>(t.window_pixels), t.memory_bytes / (1024.0 * 1024.0));
+    out << line;
+  }
+}
+
+}  // namespace
+
+void AddPlanCommand(CLI::App& app, int* exit_code) {
+  auto config_path = std::make_shared<std::string>();
+  auto* cmd = app.add_subcommand("plan", "Plan the geo-tiles of a job: views and depth windows per tile, memory "
+                                         "estimate; prints a table and writes DIR/plan.json");
+  cmd->add_option("CONFIG", *config_path, "YAML config (the tiling.* keys; see sacfuse run --print-defaults)")
+      ->required();
+  cmd->callback([config_path, exit_code] {
+    SetupLogging("info");
+    *exit_code = RunGuarded([&] {
+      const JobConfig config = LoadJobConfig(*config_path);
+      std::string plan_path;
+      const TilePlan plan = PlanJob(config, &plan_path);
+      PrintPlanTable(plan, std::cout);
+      std::cout << "plan: " << plan_path << "\n";
+      return kExitOk;
+    });
+  });
+}
+
+}  // namespace sacfuse::cli
