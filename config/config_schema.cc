@@ -199,4 +199,11 @@ std::string ConfigSchema::Dump(bool with_comments) const {
   return os.str();
 }
 
+std::vector<std::pair<std::string, std::string>> ConfigSchema::Values() const {
+  std::vector<std::pair<std::string, std::string>> values;
+  values.reserve(entries_.size());
+  for (const auto& e : entries_) values.emplace_back(e.key, e.get());
+  return values;
+}
+
 }  // namespace sacfuse

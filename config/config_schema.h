@@ -4,6 +4,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace YAML {
@@ -31,6 +32,8 @@ class ConfigSchema {
              std::map<std::string, int>* key_lines = nullptr) const;
   // YAML text of the current field values, sections in registration order; comments carry the docs.
   std::string Dump(bool with_comments) const;
+  // Every key with its current value as YAML scalar/flow text, in registration order.
+  std::vector<std::pair<std::string, std::string>> Values() const;
 
  private:
   struct Entry {

@@ -186,4 +186,9 @@ std::string DumpJobConfig(const JobConfig& config, bool with_comments) {
   return header + MakeSchema(&copy).Dump(with_comments);
 }
 
+std::vector<std::pair<std::string, std::string>> JobConfigValues(const JobConfig& config) {
+  JobConfig copy = config;
+  return MakeSchema(&copy).Values();
+}
+
 }  // namespace sacfuse

@@ -3,6 +3,7 @@
 // (e.g. `output.scale_m`); config/config_schema.cc binds each key to its field, documentation and rule, so the
 // parser, the validator and `--print-defaults` share one source of truth.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/sac_options.h"
@@ -68,5 +69,7 @@ JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source
 void ValidateJobConfig(const JobConfig& config);
 // The config as YAML. With comments: every key documented with its default and unit (--print-defaults).
 std::string DumpJobConfig(const JobConfig& config, bool with_comments);
+// Every key of the config with its value as YAML text ("fusion.tau_m" -> "2"), in schema order.
+std::vector<std::pair<std::string, std::string>> JobConfigValues(const JobConfig& config);
 
 }  // namespace sacfuse

@@ -1,5 +1,6 @@
 #include "jobs/run_fusion.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 
@@ -13,7 +14,7 @@
 #include "io/las_writer.h"
 #include "jobs/resource_usage.h"
 #include "jobs/sac_block.h"
-#include "jobs/tiled_sac.h"
+#include "jobs/tiled_run.h"
 #include "jobs/version.h"
 
 namespace sacfuse {
@@ -79,11 +80,97 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                 {"superpixels_computed", s.superpixels_computed},
                 {"stage_seconds", stages}};
     if (s.tiles_run > 0) {
+      nlohmann::json failed = nlohmann::json::array();
+      for (const auto& [id, reason] : s.failed_tiles) failed.push_back({{"id", id}, {"reason", reason}});
       j["tiling"] = {{"tile_size_m", config.tiling.tile_size_m}, {"halo_m", config.tiling.halo_m},
-                     {"tiles_run", s.tiles_run}};
+                     {"tiles_run", s.tiles_run}, {"tiles_computed", s.tiles_computed},
+                     {"tiles_skipped", s.tiles_skipped}, {"failed_tiles", failed}};
     }
   }
   WriteFileAtomically(s.report_path, j.dump(2) + "\n");
+}
+
+void CheckRerunTiles(const std::vector<std::string>& rerun_tiles, const TilePlan* plan) {
+  if (rerun_tiles.empty()) return;
+  if (!plan) throw ConfigError("--tiles: only tiled runs (tiling.tile_size_m > 0, fusion.method sac) have tiles");
+  const std::vector<std::string> known = TileIdsWithViews(*plan);
+  std::string unknown;
+  for (const auto& id : rerun_tiles) {
+    if (std::find(known.begin(), known.end(), id) == known.end()) unknown += (unknown.empty() ? "" : ", ") + id;
+  }
+  if (!unknown.empty()) {
+    throw ConfigError("--tiles: unknown tile ids: " + unknown + " (tiles with views: see `sacfuse status` or "
+                      "`sacfuse plan`)");
+  }
+}
+
+void LogSacStats(const SacStats& s) {
+  spdlog::info("SAC: {} nodes in {} Netlets ({} proven optimal); {} pixels in, {} collapsed, {} outliers, {} out",
+               s.valid_nodes, s.labeling.netlets, s.labeling.proven_optimal, s.collapse.input_pixels,
+               s.collapse.collapsed, s.collapse.outliers, s.collapse.emitted);
+}
+
+void SetSacSummary(const SacBlockResult& sac, RunSummary* summary) {
+  summary->has_sac_stats = true;
+  summary->sac = sac.stats;
+  summary->superpixels_computed = sac.superpixels_computed;
+  summary->input_points = sac.stats.collapse.input_pixels;
+  LogSacStats(sac.stats);
+}
+
+std::string CacheDir(const JobConfig& config) {
+  return config.fusion.superpixel_cache_dir.empty()
+             ? (std::filesystem::path(config.output.dir) / "superpixels").string()
+             : config.fusion.superpixel_cache_dir;
+}
+
+// Tiled SAC: per-tile files, resume, merge (jobs/tiled_run.h).
+void RunTiled(const JobConfig& config, const ColmapWorkspace& workspace, const RunProgress& progress,
+              const std::vector<std::string>& rerun_tiles, RunSummary* summary) {
+  const TilePlan plan = BuildTilePlan(workspace, config.tiling);
+  CheckRerunTiles(rerun_tiles, &plan);
+  spdlog::info("tiled SAC: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
+               plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
+               config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
+  const TiledRunOutcome tiled =
+      RunTiledSac(config, workspace, plan, rerun_tiles, MakeLasOptions(config.output), summary->las_path, progress);
+  SetSacSummary(tiled.block, summary);
+  summary->tiles_run = tiled.tiles_with_views;
+  summary->tiles_computed = tiled.tiles_computed;
+  summary->tiles_skipped = tiled.tiles_skipped;
+  summary->failed_tiles = tiled.failed;
+  summary->output_points = tiled.merged_points;
+  for (auto& v : summary->views) {
+    const size_t i = &v - summary->views.data();
+    v.output_points = i < tiled.points_per_view.size() ? tiled.points_per_view[i] : 0;
+  }
+  spdlog::info("tiles: {} computed, {} done and skipped, {} failed", tiled.tiles_computed, tiled.tiles_skipped,
+               tiled.failed.size());
+}
+
+// Untiled SAC or the union, streamed into one LAS writer.
+void RunUntiled(const JobConfig& config, const ColmapWorkspace& workspace, const RunProgress& progress,
+                RunSummary* summary) {
+  const auto& views = workspace.views();
+  LasWriter writer(summary->las_path, MakeLasOptions(config.output));
+  CountingSink counting(writer);
+  if (config.fusion.method == "union") {
+    spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
+    if (config.tiling.tile_size_m > 0) spdlog::info("tiling applies to sac only; the union runs untiled");
+    for (size_t i = 0; i < views.size(); ++i) {
+      const DepthMap depth = workspace.ReadDepthMap(views[i]);
+      const RgbImage image = workspace.ReadImage(views[i]);
+      summary->views[i].input_pixels = BackprojectDepthMap(views[i], depth, &image, counting);
+      summary->input_points += summary->views[i].input_pixels;
+      if (progress) progress("fuse", i + 1, views.size());
+    }
+  } else {
+    SetSacSummary(FuseWorkspaceWithSac(workspace, config.fusion.sac, CacheDir(config), counting, progress),
+                  summary);
+  }
+  writer.Close();
+  summary->output_points = writer.num_points();
+  for (size_t i = 0; i < views.size(); ++i) summary->views[i].output_points = counting.count(views[i].index);
 }
 
 }  // namespace
@@ -92,7 +179,8 @@ std::string FusedLasPath(const JobConfig& config) {
   return (std::filesystem::path(config.output.dir) / "fused.las").string();
 }
 
-RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress) {
+RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress,
+                        const std::vector<std::string>& rerun_tiles) {
   ValidateJobConfig(config);
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ProcessCpuSeconds();
@@ -103,6 +191,8 @@ RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress) {
   summary.las_path = FusedLasPath(config);
   summary.effective_config_path = (std::filesystem::path(config.output.dir) / "sacfuse.effective.yaml").string();
   summary.report_path = (std::filesystem::path(config.output.dir) / "run_report.json").string();
+  const bool tiled = config.fusion.method == "sac" && config.tiling.tile_size_m > 0;
+  if (!tiled) CheckRerunTiles(rerun_tiles, nullptr);
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
   const ColmapWorkspace workspace(config.input.path, config.input.depth_type == "photometric"
@@ -111,58 +201,26 @@ RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress) {
   const auto& views = workspace.views();
   if (views.empty()) throw InputError(config.input.path, "the workspace has no images to fuse");
   spdlog::info("input: {} views from {}", views.size(), config.input.path);
-  LasWriter writer(summary.las_path, MakeLasOptions(config.output));
-  CountingSink counting(writer);
   summary.views.resize(views.size());
   for (size_t i = 0; i < views.size(); ++i) summary.views[i].name = views[i].name;
-  if (config.fusion.method == "union") {
-    spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
-    if (config.tiling.tile_size_m > 0) spdlog::info("tiling applies to sac only; the union runs untiled");
-    for (size_t i = 0; i < views.size(); ++i) {
-      const DepthMap depth = workspace.ReadDepthMap(views[i]);
-      const RgbImage image = workspace.ReadImage(views[i]);
-      summary.views[i].input_pixels = BackprojectDepthMap(views[i], depth, &image, counting);
-      summary.input_points += summary.views[i].input_pixels;
-      if (progress) progress("fuse", i + 1, views.size());
-    }
-  } else {
+  if (config.fusion.method == "sac") {
     spdlog::info("fusion method: sac (Select-and-Combine, unary '{}', correspondences '{}')",
                  config.fusion.sac.unary, config.fusion.sac.correspondence);
-    const std::string cache_dir = config.fusion.superpixel_cache_dir.empty()
-                                      ? (std::filesystem::path(config.output.dir) / "superpixels").string()
-                                      : config.fusion.superpixel_cache_dir;
-    SacBlockResult sac;
-    if (config.tiling.tile_size_m > 0) {
-      const TilePlan plan = BuildTilePlan(workspace, config.tiling);
-      spdlog::info("tiled SAC: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
-                   plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
-                   config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
-      const TiledSacResult tiled =
-          FuseWorkspaceTiled(workspace, plan, config.fusion.sac, cache_dir, counting, progress);
-      sac = tiled.block;
-      summary.tiles_run = tiled.tiles_run;
-    } else {
-      sac = FuseWorkspaceWithSac(workspace, config.fusion.sac, cache_dir, counting, progress);
-    }
-    summary.has_sac_stats = true;
-    summary.sac = sac.stats;
-    summary.superpixels_computed = sac.superpixels_computed;
-    summary.input_points = sac.stats.collapse.input_pixels;
-    spdlog::info("SAC: {} nodes in {} Netlets ({} proven optimal); {} pixels in, {} collapsed, {} outliers, {} out",
-                 sac.stats.valid_nodes, sac.stats.labeling.netlets, sac.stats.labeling.proven_optimal,
-                 sac.stats.collapse.input_pixels, sac.stats.collapse.collapsed, sac.stats.collapse.outliers,
-                 sac.stats.collapse.emitted);
   }
-  writer.Close();
-  summary.output_points = writer.num_points();
-  for (size_t i = 0; i < views.size(); ++i) summary.views[i].output_points = counting.count(views[i].index);
+  if (tiled) {
+    RunTiled(config, workspace, progress, rerun_tiles, &summary);
+  } else {
+    RunUntiled(config, workspace, progress, &summary);
+  }
 
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.cpu_seconds = ProcessCpuSeconds() - cpu_start;
   summary.peak_rss_mib = PeakRssMiB();
   WriteRunReport(summary, config);
-  spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
-               summary.wall_seconds, summary.peak_rss_mib);
+  if (summary.failed_tiles.empty()) {
+    spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
+                 summary.wall_seconds, summary.peak_rss_mib);
+  }
   return summary;
 }
 

@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "config/job_config.h"
@@ -31,13 +32,20 @@ struct RunSummary {
   SacStats sac;
   size_t superpixels_computed = 0;
   size_t tiles_run = 0;  // tiled SAC (tiling.tile_size_m > 0): tiles with views; 0 = untiled
+  size_t tiles_computed = 0;  // tiled: computed by this invocation (the rest were verified done and skipped)
+  size_t tiles_skipped = 0;
+  std::vector<std::pair<std::string, std::string>> failed_tiles;  // tiled: id, reason; then no fused.las
 };
 
 // Called as work proceeds: stage name, units done, units total.
 using RunProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
 // Runs one job. Throws InputError/ConfigError/Error with context; never leaves a partial fused.las.
-RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {});
+// Tiled runs resume (jobs/tiled_run.h): `rerun_tiles` names tiles to recompute even when done (ConfigError
+// naming any id that is not a tile with views, or when the run is not tiled); a tile that fails is listed in
+// failed_tiles and the job returns without merging.
+RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {},
+                        const std::vector<std::string>& rerun_tiles = {});
 
 // Path of the fused cloud of a config.
 std::string FusedLasPath(const JobConfig& config);

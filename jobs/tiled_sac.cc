@@ -1,10 +1,8 @@
 #include "jobs/tiled_sac.h"
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 
-#include <spdlog/spdlog.h>
 
 #include "core/error.h"
 #include "io/colmap_array.h"
@@ -106,7 +104,9 @@ class CoreFilterSink : public PointSink {
   uint64_t inside_ = 0, outside_ = 0;
 };
 
-void AddStats(const SacStats& s, SacStats* total) {
+}  // namespace
+
+void AddSacStats(const SacStats& s, SacStats* total) {
   total->nodes += s.nodes;
   total->valid_nodes += s.valid_nodes;
   total->mean_correspondences += s.mean_correspondences * s.valid_nodes;  // normalised at the end
@@ -132,64 +132,44 @@ void AddStats(const SacStats& s, SacStats* total) {
   }
 }
 
-}  // namespace
-
-TiledSacResult FuseWorkspaceTiled(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
-                                  const std::string& superpixel_cache_dir, PointSink& sink,
-                                  const SacProgress& progress) {
-  ValidateSacOptions(options);
-  if (options.correspondence == "dense") {
-    throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
-  }
+size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
+                              const std::string& superpixel_cache_dir, const SacProgress& progress) {
   const auto& views = workspace.views();
-  TiledSacResult result;
-  const auto start = std::chrono::steady_clock::now();
+  size_t computed = 0;
   for (size_t v = 0; v < views.size(); ++v) {
-    result.block.superpixels_computed +=
-        EnsureSuperpixels(workspace, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir) ? 1 : 0;
+    computed += EnsureSuperpixels(workspace, views[v], plan.depth_sizes[v], options.superpixels,
+                                  superpixel_cache_dir) ? 1 : 0;
     if (progress) progress("superpixels", v + 1, views.size());
   }
-  result.block.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  spdlog::info("superpixels: {} computed, {} reused from {} ({:.1f} s)", result.block.superpixels_computed,
-               views.size() - result.block.superpixels_computed, superpixel_cache_dir,
-               result.block.superpixel_seconds);
-  SacStats& total = result.block.stats;
-  total.emitted_per_view.assign(views.size(), 0);
-  for (size_t t = 0; t < plan.tiles.size(); ++t) {
-    const PlannedTile& tile = plan.tiles[t];
-    if (tile.views.empty()) continue;
-    std::vector<WindowRasters> rasters;
-    rasters.reserve(tile.views.size());
-    std::vector<SacView> sac_views;
-    sac_views.reserve(tile.views.size());
-    for (const TileViewWindow& tw : tile.views) {
-      const View& view = views[tw.view];
-      const DepthRasterSize& size = plan.depth_sizes[tw.view];
-      rasters.push_back(LoadWindow(workspace, view, size, tw.window, superpixel_cache_dir));
-      WindowRasters& r = rasters.back();
-      SacView sv;
-      sv.view = view;
-      sv.depth = &r.depth;
-      sv.superpixels = &r.superpixels;
-      sv.image = r.image.empty() ? nullptr : &r.image;
-      sv.depth_camera = WindowCamera(view.camera.Scaled(size.width, size.height), tw.window);
-      sv.world_from_cam = view.cam_from_world.Inverse();
-      sac_views.push_back(sv);
-    }
-    CoreFilterSink core_sink(plan.grid, tile.index, sink);
-    const SacStats stats = RunSacFusion(sac_views, options, core_sink);
-    AddStats(stats, &total);
-    for (size_t i = 0; i < tile.views.size(); ++i) {
-      total.emitted_per_view[tile.views[i].view] += stats.emitted_per_view[i];
-    }
-    result.points_in_cores += core_sink.inside();
-    result.points_outside_core += core_sink.outside();
-    ++result.tiles_run;
-    spdlog::info("tile {} ({}/{}): {} views, {} points in its core, {} left to neighbours", tile.id, t + 1,
-                 plan.tiles.size(), tile.views.size(), core_sink.inside(), core_sink.outside());
-    if (progress) progress("tiles", t + 1, plan.tiles.size());
+  return computed;
+}
+
+TileFusionResult FuseTile(const ColmapWorkspace& workspace, const TilePlan& plan, const PlannedTile& tile,
+                          const SacOptions& options, const std::string& superpixel_cache_dir, PointSink& sink) {
+  const auto& views = workspace.views();
+  std::vector<WindowRasters> rasters;
+  rasters.reserve(tile.views.size());
+  std::vector<SacView> sac_views;
+  sac_views.reserve(tile.views.size());
+  for (const TileViewWindow& tw : tile.views) {
+    const View& view = views[tw.view];
+    const DepthRasterSize& size = plan.depth_sizes[tw.view];
+    rasters.push_back(LoadWindow(workspace, view, size, tw.window, superpixel_cache_dir));
+    WindowRasters& r = rasters.back();
+    SacView sv;
+    sv.view = view;
+    sv.depth = &r.depth;
+    sv.superpixels = &r.superpixels;
+    sv.image = r.image.empty() ? nullptr : &r.image;
+    sv.depth_camera = WindowCamera(view.camera.Scaled(size.width, size.height), tw.window);
+    sv.world_from_cam = view.cam_from_world.Inverse();
+    sac_views.push_back(sv);
   }
-  if (total.valid_nodes > 0) total.mean_correspondences /= static_cast<double>(total.valid_nodes);
+  CoreFilterSink core_sink(plan.grid, tile.index, sink);
+  TileFusionResult result;
+  result.stats = RunSacFusion(sac_views, options, core_sink);
+  result.points_in_core = core_sink.inside();
+  result.points_outside_core = core_sink.outside();
   return result;
 }
 

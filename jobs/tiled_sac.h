@@ -2,7 +2,7 @@
 // SAC tile by tile (tiling.tile_size_m > 0): each tile loads only the windows of its views' depth maps,
 // superpixel labels and colours that its halo box needs, runs core's RunSacFusion on them, and keeps only the
 // points whose XY lies in the tile's half-open core, so the tiles stitch into one cloud without seams or
-// duplicates. Tiles run one after another in grid order and stream into one sink (the job's one LAS writer).
+// duplicates. jobs/tiled_run.h runs the tiles one after another, each into its own LAS file.
 #include <string>
 
 #include "core/point.h"
@@ -13,15 +13,24 @@
 
 namespace sacfuse {
 
-struct TiledSacResult {
-  SacBlockResult block;           // stats summed over tiles (pixels, nodes and points count every tile's halo)
-  size_t tiles_run = 0;           // tiles with at least one view
-  uint64_t points_in_cores = 0;   // points kept (written to the sink)
-  uint64_t points_outside_core = 0;  // emitted in a tile's halo, left to the neighbouring tile
+// Computes the superpixel cache of every view that lacks a current one (nothing is read for the others);
+// returns how many were computed.
+size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
+                              const std::string& superpixel_cache_dir, const SacProgress& progress = {});
+
+struct TileFusionResult {
+  SacStats stats;                    // of the tile's halo (emitted_per_view indexed like tile.views)
+  uint64_t points_in_core = 0;       // written to the sink
+  uint64_t points_outside_core = 0;  // emitted in the halo, left to the neighbouring tiles
 };
 
-TiledSacResult FuseWorkspaceTiled(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
-                                  const std::string& superpixel_cache_dir, PointSink& sink,
-                                  const SacProgress& progress = {});
+// Runs SAC on one tile (which must have views) and writes the points of its core to `sink`. Needs the
+// superpixel caches (EnsureTiledSuperpixels). Throws InputError/Error on unreadable inputs.
+TileFusionResult FuseTile(const ColmapWorkspace& workspace, const TilePlan& plan, const PlannedTile& tile,
+                          const SacOptions& options, const std::string& superpixel_cache_dir, PointSink& sink);
+
+// Adds one tile's stats to a running total (mean_correspondences is summed weighted by valid nodes: divide by
+// total->valid_nodes at the end; emitted_per_view is not touched).
+void AddSacStats(const SacStats& tile, SacStats* total);
 
 }  // namespace sacfuse

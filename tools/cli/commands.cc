@@ -13,6 +13,7 @@ int Main(int argc, char** argv) {
   int exit_code = kExitOk;
   AddRunCommand(app, &exit_code);
   AddPlanCommand(app, &exit_code);
+  AddStatusCommand(app, &exit_code);
   AddSimulateCommand(app, &exit_code);
   AddEvalCommand(app, &exit_code);
   AddVersionCommand(app, &exit_code);

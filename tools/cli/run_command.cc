@@ -40,7 +40,34 @@ struct RunArgs {
   std::string config_path;
   bool print_defaults = false;
   int threads = -1;
+  std::string tiles;  // comma-separated tile ids to recompute
 };
+
+std::vector<std::string> SplitIds(const std::string& text) {
+  std::vector<std::string> ids;
+  std::string id;
+  for (const char c : text + ",") {
+    if (c == ',') {
+      if (!id.empty()) ids.push_back(id);
+      id.clear();
+    } else if (c != ' ') {
+      id += c;
+    }
+  }
+  return ids;
+}
+
+int ReportFailedTiles(const RunSummary& summary, const RunArgs& args) {
+  std::string ids;
+  std::cout << summary.failed_tiles.size() << " of " << summary.tiles_run
+            << " tiles failed; fused.las was not merged:\n";
+  for (const auto& [id, reason] : summary.failed_tiles) {
+    std::cout << "  tile " << id << ": " << reason << "\n";
+    ids += (ids.empty() ? "" : ",") + id;
+  }
+  std::cout << "rerun them with: sacfuse run " << args.config_path << " --tiles " << ids << "\n";
+  return kExitFailure;
+}
 
 int RunCommand(const RunArgs& args) {
   if (args.print_defaults) {
@@ -56,7 +83,12 @@ int RunCommand(const RunArgs& args) {
     SetupLogging(config.log.level, (std::filesystem::path(config.output.dir) / "sacfuse.log").string());
     spdlog::info("effective configuration ({}):\n{}", args.config_path, DumpJobConfig(config, false));
     ProgressPrinter progress;
-    const RunSummary summary = RunFusionJob(config, std::ref(progress));
+    const RunSummary summary = RunFusionJob(config, std::ref(progress), SplitIds(args.tiles));
+    if (!summary.failed_tiles.empty()) return ReportFailedTiles(summary, args);
+    if (summary.tiles_run > 0) {
+      std::cout << "tiles: " << summary.tiles_computed << " computed, " << summary.tiles_skipped
+                << " done and skipped (of " << summary.tiles_run << ")\n";
+    }
     std::cout << "fused cloud: " << summary.las_path << " (" << summary.output_points << " points, "
               << summary.views.size() << " views, method " << summary.method << ")\n";
     PrintSourceViewSummary(summary, std::cout);
@@ -83,6 +115,9 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("CONFIG", args->config_path, "YAML config (see --print-defaults)");
   cmd->add_flag("--print-defaults", args->print_defaults, "Print a complete commented config with every default");
   cmd->add_option("--threads", args->threads, "Override resources.threads (0 = all cores)");
+  cmd->add_option("--tiles", args->tiles,
+                  "Tiled runs: recompute these tiles (comma-separated ids such as 3_4,3_5) even when done, "
+                  "then merge");
   cmd->callback([args, exit_code] { *exit_code = RunCommand(*args); });
 }
 

@@ -1,0 +1,60 @@
+#include "config/result_settings.h"
+
+#include <map>
+#include <sstream>
+
+#include "io/file_checksum.h"
+
+namespace sacfuse {
+namespace {
+
+bool AffectsResults(const std::string& key) {
+  auto starts = [&](const char* prefix) { return key.rfind(prefix, 0) == 0; };
+  if (key == "fusion.superpixel_cache_dir") return false;
+  return starts("input.") || starts("fusion.") || starts("superpixels.") || starts("tiling.") ||
+         key == "output.scale_m" || key == "output.las_version";
+}
+
+std::map<std::string, std::string> ParseLines(const std::string& text) {
+  std::map<std::string, std::string> values;
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    const auto colon = line.find(": ");
+    if (colon == std::string::npos) continue;
+    values[line.substr(0, colon)] = line.substr(colon + 2);
+  }
+  return values;
+}
+
+}  // namespace
+
+std::string ResultSettingsText(const JobConfig& config) {
+  std::string text;
+  for (const auto& [key, value] : JobConfigValues(config)) {
+    if (AffectsResults(key)) text += key + ": " + value + "\n";
+  }
+  return text;
+}
+
+std::string ResultSettingsHash(const JobConfig& config) { return HexDigest(Fnv1a64(ResultSettingsText(config))); }
+
+std::vector<std::string> ChangedResultSettings(const std::string& old_text, const std::string& new_text) {
+  const auto old_values = ParseLines(old_text);
+  const auto new_values = ParseLines(new_text);
+  std::vector<std::string> changed;
+  for (const auto& [key, value] : new_values) {
+    const auto it = old_values.find(key);
+    if (it == old_values.end()) {
+      changed.push_back(key + " (new: " + value + ")");
+    } else if (it->second != value) {
+      changed.push_back(key + " " + it->second + " -> " + value);
+    }
+  }
+  for (const auto& [key, value] : old_values) {
+    if (!new_values.count(key)) changed.push_back(key + " (removed)");
+  }
+  return changed;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,88 @@
+// `sacfuse status CONFIG`: which tiles of a tiled run are done, failed or pending, from DIR/tiles/ alone (the
+// manifest and the markers; no plan is built and nothing is computed). A done tile is re-checked against its
+// LAS file's size and header count and the current config's hash; --verify also recomputes the checksums.
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "config/job_config.h"
+#include "config/result_settings.h"
+#include "core/error.h"
+#include "jobs/tile_marker.h"
+#include "jobs/tiled_run.h"
+#include "tools/cli/cli_support.h"
+#include "tools/cli/commands.h"
+
+namespace sacfuse::cli {
+namespace {
+
+struct StatusArgs {
+  std::string config_path;
+  bool verify = false;
+};
+
+int StatusCommand(const StatusArgs& args) {
+  const JobConfig config = LoadJobConfig(args.config_path);
+  if (config.tiling.tile_size_m <= 0)
+    throw ConfigError(args.config_path + ": not a tiled run (tiling.tile_size_m = 0)");
+  const std::string tiles_dir = TilesDir(config);
+  const std::string manifest_path = (std::filesystem::path(tiles_dir) / "manifest.json").string();
+  std::ifstream in(manifest_path);
+  if (!in) {
+    std::cout << "no tiled run has started in " << config.output.dir << " (no " << manifest_path << ")\n";
+    return kExitOk;
+  }
+  const nlohmann::json manifest = nlohmann::json::parse(in);
+  const std::string hash = ResultSettingsHash(config);
+  std::vector<std::string> done, failed, pending;
+  std::vector<std::string> failed_reasons, pending_reasons;
+  uint64_t done_points = 0;
+  for (const auto& id_json : manifest.at("tiles")) {
+    const std::string id = id_json.get<std::string>();
+    const TileCheck check = VerifyTileDone(tiles_dir, id, hash, args.verify);
+    if (check.done) {
+      done.push_back(id);
+      done_points += ReadTileDoneMarker(tiles_dir, id)->points;
+    } else if (const auto reason = ReadTileFailedReason(tiles_dir, id)) {
+      failed.push_back(id);
+      failed_reasons.push_back(*reason);
+    } else {
+      pending.push_back(id);
+      pending_reasons.push_back(check.reason);
+    }
+  }
+  const size_t total = manifest.at("tiles").size();
+  std::cout << total << " tiles with views: " << done.size() << " done (" << done_points << " points), "
+            << failed.size() << " failed, " << pending.size() << " pending\n";
+  if (manifest.at("config_hash").get<std::string>() != hash) {
+    std::cout << "the config's result-affecting settings differ from the last run's: tiles must be recomputed\n";
+  }
+  for (const auto& id : done) std::cout << "done     " << id << "\n";
+  for (size_t i = 0; i < failed.size(); ++i) std::cout << "failed   " << failed[i] << ": " << failed_reasons[i] << "\n";
+  for (size_t i = 0; i < pending.size(); ++i) {
+    std::cout << "pending  " << pending[i] << " (" << pending_reasons[i] << ")\n";
+  }
+  const bool merged = std::filesystem::exists(std::filesystem::path(config.output.dir) / "fused.las");
+  std::cout << "fused.las: " << (merged && done.size() == total ? "merged" : "not merged") << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddStatusCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<StatusArgs>();
+  auto* cmd = app.add_subcommand("status", "Done / failed / pending tiles of a tiled run, from DIR/tiles/ markers");
+  cmd->add_option("CONFIG", args->config_path, "YAML config of the run")->required();
+  cmd->add_flag("--verify", args->verify, "Also recompute every done tile's checksum");
+  cmd->callback([args, exit_code] {
+    SetupLogging("warn");
+    *exit_code = RunGuarded([&] { return StatusCommand(*args); });
+  });
+}
+
+}  // namespace sacfuse::cli
