@@ -15,10 +15,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::RunCommand;
+using testing::ShellQuote;
 using testing::SacfuseBinary;
 using testing::TempDir;
-
-std::string Quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // One simulated tiny block shared by the tests of this file (simulation takes a few seconds).
 class CliEndToEndTest : public ::testing::Test {
@@ -27,7 +26,7 @@ class CliEndToEndTest : public ::testing::Test {
     dir_ = new TempDir();
     std::string out;
     const int code = RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " +
-                                    Quote(dir_->path() / "block"),
+                                    ShellQuote(dir_->path() / "block"),
                                 &out);
     ASSERT_EQ(code, 0) << out;
   }
@@ -71,8 +70,8 @@ TEST_F(CliEndToEndTest, SimulateWritesACompleteWorkspace) {
 
 TEST_F(CliEndToEndTest, SacBeatsTheUnionOnF1WithFewerPoints) {
   std::string out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("union", "union")), &out), 0) << out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("sac", "sac")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("union", "union")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("sac", "sac")), &out), 0) << out;
   EXPECT_NE(out.find("fused cloud:"), std::string::npos) << out;
   EXPECT_NE(out.find("F1 @"), std::string::npos) << out;
   const fs::path u = dir_->path() / "union", s = dir_->path() / "sac";
@@ -97,8 +96,8 @@ TEST(CliLidarTest, SacBeatsTheUnionOnALidarBlock) {
   if (!fs::exists(las)) GTEST_SKIP() << las << " not found";
   TempDir dir;
   std::string out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 5 --area 60 --from-las " + Quote(las) +
-                           " --out " + Quote(dir / "block"),
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 5 --area 60 --from-las " + ShellQuote(las) +
+                           " --out " + ShellQuote(dir / "block"),
                        &out),
             0)
       << out;
@@ -109,7 +108,7 @@ TEST(CliLidarTest, SacBeatsTheUnionOnALidarBlock) {
                           << (dir / method).string() << "}\nfusion: {method: " << method << "}\n"
                           << "evaluation: {reference: " << (dir / "block" / "reference.las").string()
                           << ", mask: " << (dir / "block" / "eval_mask.png").string() << ", gsd_m: 0.2}\n";
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &out), 0) << out;
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
     results[method] = {LasReader((dir / method / "fused.las").string()).header().point_count,
                        {F1FromJson(dir / method / "eval.json", 0), F1FromJson(dir / method / "eval.json", 1)}};
   }
@@ -122,11 +121,11 @@ TEST_F(CliEndToEndTest, DenseCorrespondencesFromConsistencyGraphs) {
   ASSERT_TRUE(fs::exists(Block() / "stereo" / "consistency_graphs"));
   std::string out;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " +
-                           Quote(WriteConfig("dense", "sac", "  correspondence: dense\n")),
+                           ShellQuote(WriteConfig("dense", "sac", "  correspondence: dense\n")),
                        &out),
             0)
       << out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("union_for_dense", "union")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("union_for_dense", "union")), &out), 0) << out;
   for (size_t t = 0; t < 2; ++t) {
     EXPECT_GT(F1FromJson(dir_->path() / "dense" / "eval.json", t),
               F1FromJson(dir_->path() / "union_for_dense" / "eval.json", t));
@@ -136,10 +135,10 @@ TEST_F(CliEndToEndTest, DenseCorrespondencesFromConsistencyGraphs) {
 TEST_F(CliEndToEndTest, SuperpixelsAreReusedOnASecondRun) {
   const fs::path config = WriteConfig("rerun", "sac");
   std::string first, second;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &first), 0) << first;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &first), 0) << first;
   EXPECT_NE(first.find("0 reused"), std::string::npos) << first;
   fs::copy_file(dir_->path() / "rerun" / "fused.las", dir_->path() / "first.las");
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &second), 0) << second;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &second), 0) << second;
   EXPECT_NE(second.find("0 computed"), std::string::npos) << second;
   // Same result both times, byte for byte.
   EXPECT_EQ(testing::ReadFileBytes(dir_->path() / "first.las"),
@@ -150,7 +149,7 @@ TEST_F(CliEndToEndTest, ConfigErrorsExitTwoAndNameKeyAndLine) {
   const fs::path path = dir_->path() / "bad.yaml";
   std::ofstream(path) << "input:\n  path: x\n  fromat: colmap\noutput: {scale_m: 0.003}\n";
   std::string out;
-  EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(path), &out), 2);
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(path), &out), 2);
   EXPECT_NE(out.find("bad.yaml:3: input.fromat: unknown key"), std::string::npos) << out;
 }
 
@@ -171,7 +170,7 @@ TEST_F(CliEndToEndTest, CorruptDepthMapFailsNamingTheFileAndLeavesNoLas) {
   std::ofstream(config) << "input: {path: " << copy.string() << "}\noutput: {dir: "
                         << (dir_->path() / "corrupt_out").string() << "}\n";
   std::string out;
-  EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(config), &out), 1) << out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 1) << out;
   EXPECT_NE(out.find(victim.filename().string()), std::string::npos) << out;
   EXPECT_FALSE(fs::exists(dir_->path() / "corrupt_out" / "fused.las"));
   for (const auto& e : fs::directory_iterator(dir_->path() / "corrupt_out")) {
@@ -181,10 +180,10 @@ TEST_F(CliEndToEndTest, CorruptDepthMapFailsNamingTheFileAndLeavesNoLas) {
 
 TEST_F(CliEndToEndTest, EvalCommandPrintsATableAndJson) {
   std::string out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(WriteConfig("for_eval", "union")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("for_eval", "union")), &out), 0) << out;
   const fs::path json = dir_->path() / "eval_cmd.json";
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + Quote(dir_->path() / "for_eval" / "fused.las") + " --reference " +
-                           Quote(Block() / "reference.las") + " --gsd 0.1 --tau-gsd 2,5 --json " + Quote(json),
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(dir_->path() / "for_eval" / "fused.las") + " --reference " +
+                           ShellQuote(Block() / "reference.las") + " --gsd 0.1 --tau-gsd 2,5 --json " + ShellQuote(json),
                        &out),
             0)
       << out;

@@ -22,12 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 using testing::ReadFileBytes;
 using testing::RunCommand;
+using testing::ShellQuote;
 using testing::SacfuseBinary;
 using testing::TempDir;
 
 constexpr size_t kCreationDateOffset = 90;  // creation day-of-year and year, u16 each
-
-std::string Quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // LAS bytes with the creation date blanked: two runs of the same job must agree on everything else.
 std::string WithoutCreationDate(std::string bytes) {
@@ -66,14 +65,14 @@ class ResumeEndToEndTest : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new TempDir();
     std::string out;
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + Quote(Block()), &out), 0) << out;
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + ShellQuote(Block()), &out), 0) << out;
     for (const std::string name : {"a", "b"}) {
       std::ofstream(Config(name)) << "input: {path: " << Block().string() << "}\n"
                                   << "output: {dir: " << Out(name).string() << "}\n"
                                   << "tiling: {tile_size_m: 20, halo_m: 5}\n";
     }
     const auto t0 = std::chrono::steady_clock::now();
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(Config("a")), &out), 0) << out;
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("a")), &out), 0) << out;
     run_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     reference_ = WithoutCreationDate(ReadFileBytes(Out("a") / "fused.las"));
   }
@@ -87,7 +86,7 @@ class ResumeEndToEndTest : public ::testing::Test {
   static fs::path Tiles(const std::string& name) { return Out(name) / "tiles"; }
   static std::string Run(const std::string& name, const std::string& extra, int* code) {
     std::string out;
-    *code = RunCommand(SacfuseBinary() + " run " + Quote(Config(name)) + extra, &out);
+    *code = RunCommand(SacfuseBinary() + " run " + ShellQuote(Config(name)) + extra, &out);
     return out;
   }
   static void ExpectFusedMatchesReference(const std::string& name) {
@@ -109,7 +108,7 @@ TEST_F(ResumeEndToEndTest, UninterruptedRunWritesTileFilesAndStatusListsAllDone)
   EXPECT_EQ(DoneMarkers(Tiles("a")).size(), tiles);
   EXPECT_TRUE(fs::exists(Tiles("a") / "run_config.yaml"));
   std::string out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + Quote(Config("a")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
   EXPECT_NE(out.find(std::to_string(tiles) + " tiles with views: " + std::to_string(tiles) + " done"),
             std::string::npos)
       << out;
@@ -136,7 +135,7 @@ TEST_F(ResumeEndToEndTest, ThreeKillsThenResumeGiveTheUninterruptedCloud) {
     char command[1024];
     std::snprintf(command, sizeof(command),
                   "%s run %s >/dev/null 2>&1 & pid=$!; sleep %.2f; kill -9 $pid 2>/dev/null; wait $pid",
-                  SacfuseBinary().c_str(), Quote(Config("b")).c_str(), s);
+                  SacfuseBinary().c_str(), ShellQuote(Config("b")).c_str(), s);
     // 137 = killed by SIGKILL; 0 = the run had already finished (the resumed part of a tiny run is short).
     const int status = RunCommand(command);
     const size_t done = fs::exists(Tiles("b")) ? DoneMarkers(Tiles("b")).size() : 0;
@@ -190,7 +189,7 @@ TEST_F(ResumeEndToEndTest, DeletedTileIsPendingAndTruncatedTileIsRecomputed) {
   const bool had_las = fs::exists(deleted);
   if (had_las) fs::remove(deleted);
   std::string out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + Quote(Config("a")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
   if (had_las) {
     EXPECT_NE(out.find("pending  " + id), std::string::npos) << out;
   }
@@ -202,7 +201,7 @@ TEST_F(ResumeEndToEndTest, DeletedTileIsPendingAndTruncatedTileIsRecomputed) {
   EXPECT_NE(out.find((had_las ? "2" : "1") + std::string(" computed")), std::string::npos) << out;
   EXPECT_NE(out.find("tile " + truncated_id + " ("), std::string::npos) << out;
   ExpectFusedMatchesReference("a");
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + Quote(Config("a")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
   EXPECT_NE(out.find(", 0 failed, 0 pending"), std::string::npos) << out;
 }
 
@@ -223,7 +222,7 @@ TEST_F(ResumeEndToEndTest, FailedTileIsRecordedAndTheOthersGoOn) {
   EXPECT_NE(out.find("sacfuse run " + Config("a").string() + " --tiles " + id), std::string::npos) << out;
   EXPECT_TRUE(fs::exists(Tiles("a") / (id + ".failed.json")));
   EXPECT_FALSE(fs::exists(Out("a") / "fused.las"));
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + Quote(Config("a")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
   EXPECT_NE(out.find("failed   " + id + ": "), std::string::npos) << out;
   fs::remove_all(las);
   out = Run("a", " --tiles " + id, &code);

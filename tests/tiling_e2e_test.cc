@@ -22,10 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::RunCommand;
+using testing::ShellQuote;
 using testing::SacfuseBinary;
 using testing::TempDir;
-
-std::string Quote(const fs::path& p) { return "'" + p.string() + "'"; }
 
 nlohmann::json ReadJson(const fs::path& path) {
   std::ifstream in(path);
@@ -41,7 +40,7 @@ class TilingEndToEndTest : public ::testing::Test {
   static void SetUpTestSuite() {
     dir_ = new TempDir();
     std::string out;
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + Quote(Block()), &out), 0)
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + ShellQuote(Block()), &out), 0)
         << out;
     const double gsd = ReadJson(Block() / "metadata.json").at("gsd_m").get<double>();
     for (const auto& [name, tile] : {std::pair<std::string, double>{"untiled", 0.0}, {"tiled", 20.0}}) {
@@ -66,7 +65,7 @@ class TilingEndToEndTest : public ::testing::Test {
 
 TEST_F(TilingEndToEndTest, PlanPrintsEveryTileAndWritesViewsAndWindows) {
   std::string out;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " plan " + Quote(Config("tiled")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " plan " + ShellQuote(Config("tiled")), &out), 0) << out;
   const nlohmann::json plan = ReadJson(Out("tiled") / "plan.json");
   ASSERT_GT(plan.at("tiles").size(), 4u);
   EXPECT_EQ(plan.at("tile_size_m").get<double>(), 20.0);
@@ -83,17 +82,17 @@ TEST_F(TilingEndToEndTest, PlanPrintsEveryTileAndWritesViewsAndWindows) {
     tiles_with_views += tile.at("views").empty() ? 0 : 1;
   }
   EXPECT_GT(tiles_with_views, 4u);
-  EXPECT_EQ(RunCommand(SacfuseBinary() + " plan " + Quote(dir_->path() / "missing.yaml"), &out), 2) << out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " plan " + ShellQuote(dir_->path() / "missing.yaml"), &out), 2) << out;
 }
 
 TEST_F(TilingEndToEndTest, TiledRunStitchesWithoutSeamsAndMatchesUntiled) {
   std::string out;
   const auto t0 = std::chrono::steady_clock::now();
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(Config("untiled")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("untiled")), &out), 0) << out;
   const auto t1 = std::chrono::steady_clock::now();
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + Quote(Config("tiled")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("tiled")), &out), 0) << out;
   const auto t2 = std::chrono::steady_clock::now();
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " plan " + Quote(Config("tiled")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " plan " + ShellQuote(Config("tiled")), &out), 0) << out;
   const nlohmann::json plan = ReadJson(Out("tiled") / "plan.json");
   EXPECT_GT(ReadJson(Out("tiled") / "run_report.json").at("tiling").at("tiles_run").get<int>(), 4);
 

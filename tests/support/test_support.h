@@ -31,6 +31,9 @@ std::string SacfuseBinary();
 // Whole file as bytes ("" when it cannot be read).
 std::string ReadFileBytes(const std::filesystem::path& path);
 
+// A path as one single-quoted shell word (embedded quotes escaped).
+std::string ShellQuote(const std::filesystem::path& path);
+
 // Runs a shell command, returns its exit code; stdout+stderr go to *output when given.
 int RunCommand(const std::string& command, std::string* output = nullptr);
 
