@@ -71,6 +71,8 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddDouble("tiling.z_min_m", &t.z_min_m,
               "block height range, metres; only used when the sparse model has no points");
   s.AddDouble("tiling.z_max_m", &t.z_max_m, "block height range, metres; > tiling.z_min_m");
+  s.AddDouble("tiling.claim_timeout_s", &t.claim_timeout_s,
+              "multi-worker runs: a tile claim older than this is stale and taken over, seconds; > 0");
   s.AddInt("resources.threads", &c->resources.threads, "worker threads; 0 = all cores");
   s.AddDouble("resources.memory_gb", &c->resources.memory_gb, "memory budget, GiB; > 0");
   s.AddString("evaluation.reference", &c->evaluation.reference,

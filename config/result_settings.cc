@@ -10,7 +10,7 @@ namespace {
 
 bool AffectsResults(const std::string& key) {
   auto starts = [&](const char* prefix) { return key.rfind(prefix, 0) == 0; };
-  if (key == "fusion.superpixel_cache_dir") return false;
+  if (key == "fusion.superpixel_cache_dir" || key == "tiling.claim_timeout_s") return false;
   return starts("input.") || starts("fusion.") || starts("superpixels.") || starts("tiling.") ||
          key == "output.scale_m" || key == "output.las_version";
 }

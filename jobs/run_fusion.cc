@@ -38,13 +38,6 @@ class CountingSink : public PointSink {
   std::vector<uint64_t> per_view_;
 };
 
-LasWriterOptions MakeLasOptions(const OutputOptions& output) {
-  LasWriterOptions o;
-  o.version_minor = output.las_version == "1.2" ? 2 : 4;
-  o.scale_m = output.scale_m;
-  o.generating_software = VersionString();
-  return o;
-}
 
 void WriteRunReport(const RunSummary& s, const JobConfig& config) {
   nlohmann::json views = nlohmann::json::array();
@@ -127,7 +120,7 @@ std::string CacheDir(const JobConfig& config) {
 // Tiled SAC: per-tile files, resume, merge (jobs/tiled_run.h).
 void RunTiled(const JobConfig& config, const ColmapWorkspace& workspace, const RunProgress& progress,
               const std::vector<std::string>& rerun_tiles, RunSummary* summary) {
-  const TilePlan plan = BuildTilePlan(workspace, config.tiling);
+  const TilePlan plan = SharedTilePlan(config, workspace);
   CheckRerunTiles(rerun_tiles, &plan);
   spdlog::info("tiled SAC: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
                plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
@@ -174,6 +167,14 @@ void RunUntiled(const JobConfig& config, const ColmapWorkspace& workspace, const
 }
 
 }  // namespace
+
+LasWriterOptions MakeLasOptions(const OutputOptions& output) {
+  LasWriterOptions o;
+  o.version_minor = output.las_version == "1.2" ? 2 : 4;
+  o.scale_m = output.scale_m;
+  o.generating_software = VersionString();
+  return o;
+}
 
 std::string FusedLasPath(const JobConfig& config) {
   return (std::filesystem::path(config.output.dir) / "fused.las").string();

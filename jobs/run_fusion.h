@@ -8,6 +8,7 @@
 
 #include "config/job_config.h"
 #include "core/sac_fusion.h"
+#include "io/las_writer.h"
 
 namespace sacfuse {
 
@@ -46,6 +47,9 @@ using RunProgress = std::function<void(const std::string& stage, size_t done, si
 // failed_tiles and the job returns without merging.
 RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {},
                         const std::vector<std::string>& rerun_tiles = {});
+
+// LAS writer options of a config's output (version, scale, generating software; no offset).
+LasWriterOptions MakeLasOptions(const OutputOptions& output);
 
 // Path of the fused cloud of a config.
 std::string FusedLasPath(const JobConfig& config);

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "config/result_settings.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/colmap_array.h"
@@ -88,7 +90,7 @@ TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& op
   return plan;
 }
 
-std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace) {
+std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace, const std::string& config_hash) {
   nlohmann::json tiles = nlohmann::json::array();
   for (const PlannedTile& t : plan.tiles) {
     nlohmann::json views = nlohmann::json::array();
@@ -118,20 +120,49 @@ std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace)
                             {"grid", {plan.grid.num_x(), plan.grid.num_y()}},
                             {"bytes_per_window_pixel", kTileBytesPerWindowPixel},
                             {"tiles", tiles}};
-  return j.dump(2) + "\n";
+  nlohmann::json out = j;
+  if (!config_hash.empty()) out["config_hash"] = config_hash;
+  return out.dump(2) + "\n";
+}
+
+TilePlan SharedTilePlan(const JobConfig& config, const ColmapWorkspace& workspace, std::string* plan_path) {
+  TilePlan plan = BuildTilePlan(workspace, config.tiling);
+  const std::string hash = ResultSettingsHash(config);
+  const std::string path = (std::filesystem::path(config.output.dir) / "plan.json").string();
+  const std::string text = TilePlanJson(plan, workspace, hash);
+  if (plan_path != nullptr) *plan_path = path;
+  std::ifstream in(path);
+  nlohmann::json existing;
+  if (in) {
+    try {
+      existing = nlohmann::json::parse(in);
+    } catch (const std::exception&) {
+      existing = nullptr;  // half-written by hand or foreign: rewrite
+    }
+  }
+  if (existing.is_object() && existing.value("config_hash", "") == hash) {
+    nlohmann::json mine = nlohmann::json::parse(text);
+    mine.erase("version");
+    existing.erase("version");
+    if (mine != existing) {
+      throw Error(path + ": the shared plan of this config differs from the plan built here (inputs changed?); "
+                         "delete it to re-plan");
+    }
+    spdlog::debug("plan: using the shared {}", path);
+    return plan;
+  }
+  std::filesystem::create_directories(config.output.dir);
+  WriteFileAtomically(path, text);
+  spdlog::info("plan: {} tiles ({} x {}), z range [{:.1f}, {:.1f}] m from {}, written to {}", plan.tiles.size(),
+               plan.grid.num_x(), plan.grid.num_y(), plan.z_min_m, plan.z_max_m, plan.z_source, path);
+  return plan;
 }
 
 TilePlan PlanJob(const JobConfig& config, std::string* plan_path) {
   ValidateJobConfig(config);
   const ColmapWorkspace workspace(config.input.path, DepthType(config));
   if (workspace.views().empty()) throw InputError(config.input.path, "the workspace has no images to plan");
-  TilePlan plan = BuildTilePlan(workspace, config.tiling);
-  const std::string path = (std::filesystem::path(config.output.dir) / "plan.json").string();
-  WriteFileAtomically(path, TilePlanJson(plan, workspace));
-  if (plan_path != nullptr) *plan_path = path;
-  spdlog::info("plan: {} tiles ({} x {}), z range [{:.1f}, {:.1f}] m from {}, written to {}", plan.tiles.size(),
-               plan.grid.num_x(), plan.grid.num_y(), plan.z_min_m, plan.z_max_m, plan.z_source, path);
-  return plan;
+  return SharedTilePlan(config, workspace, plan_path);
 }
 
 }  // namespace sacfuse

@@ -57,11 +57,16 @@ void BlockHeightRange(const ColmapModel& model, const TilingOptions& options, do
 // The plan of a workspace (reads only depth-map headers). Throws InputError when no view has a footprint.
 TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& options);
 
-// JSON text of a plan (view names included).
-std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace);
+// JSON text of a plan (view names included; `config_hash`, the config's ResultSettingsHash, when not empty).
+std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace, const std::string& config_hash = "");
 
-// `sacfuse plan`: validates the config, builds the plan and writes <output.dir>/plan.json atomically.
-// Returns the plan; *plan_path receives the file written.
+// The plan shared by every worker of a job (`run`, `tile`, `merge`, `plan`): when <output.dir>/plan.json exists
+// with the config's hash it is used: the plan is rebuilt (deterministic, headers only) and must equal it, else
+// Error (delete plan.json after changing inputs by hand); otherwise this worker writes it atomically (racing
+// writers produce the same content). *plan_path receives the file.
+TilePlan SharedTilePlan(const JobConfig& config, const ColmapWorkspace& workspace, std::string* plan_path = nullptr);
+
+// `sacfuse plan`: validates the config, opens the workspace and returns SharedTilePlan.
 TilePlan PlanJob(const JobConfig& config, std::string* plan_path = nullptr);
 
 }  // namespace sacfuse

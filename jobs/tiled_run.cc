@@ -1,5 +1,7 @@
 #include "jobs/tiled_run.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -7,6 +9,7 @@
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
@@ -15,8 +18,10 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "jobs/resource_usage.h"
+#include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
 #include "jobs/tile_merge.h"
+#include "jobs/tile_queue.h"
 #include "jobs/tiled_sac.h"
 
 namespace sacfuse {
@@ -32,10 +37,14 @@ std::string ReadText(const std::string& path) {
   return os.str();
 }
 
-std::string CacheDir(const JobConfig& config) {
+}  // namespace
+
+std::string TileCacheDir(const JobConfig& config) {
   return config.fusion.superpixel_cache_dir.empty() ? (fs::path(config.output.dir) / "superpixels").string()
                                                     : config.fusion.superpixel_cache_dir;
 }
+
+namespace {
 
 void WriteManifest(const std::string& tiles_dir, const TilePlan& plan, const LasWriterOptions& las,
                    const std::string& hash) {
@@ -64,16 +73,27 @@ void RecordSettings(const std::string& tiles_dir, const std::string& settings, s
   WriteFileAtomically(path, settings);
 }
 
-// One tile into its own LAS file and done marker; throws whatever the tile throws.
-TileFusionResult ComputeTile(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
-                             const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
-                             const std::string& hash) {
+}  // namespace
+
+void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
+                         size_t tiles_to_compute) {
+  const std::string tiles_dir = TilesDir(config);
+  fs::create_directories(tiles_dir);
+  RecordSettings(tiles_dir, ResultSettingsText(config), tiles_to_compute);
+  WriteManifest(tiles_dir, plan, las, ResultSettingsHash(config));
+}
+
+TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
+                                  const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
+                                  const std::string& hash) {
+  spdlog::info("computing tile {} (pid {})", tile.id, static_cast<long>(::getpid()));
+  ClearTileState(tiles_dir, tile.id);
   const auto start = std::chrono::steady_clock::now();
   TileFusionResult fused;
   bool has_las = false;
   {
     LasWriter writer(TileLasPath(tiles_dir, tile.id), las);
-    fused = FuseTile(workspace, plan, tile, config.fusion.sac, CacheDir(config), writer);
+    fused = FuseTile(workspace, plan, tile, config.fusion.sac, TileCacheDir(config), writer);
     if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
       writer.Close();
       has_las = true;
@@ -87,8 +107,6 @@ TileFusionResult ComputeTile(const JobConfig& config, const ColmapWorkspace& wor
   WriteTileDoneMarker(tiles_dir, marker);
   return fused;
 }
-
-}  // namespace
 
 std::string TilesDir(const JobConfig& config) { return (fs::path(config.output.dir) / "tiles").string(); }
 
@@ -113,18 +131,23 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
   }
   ValidateSacOptions(config.fusion.sac);
   const std::string tiles_dir = TilesDir(config);
+  const double claim_timeout_s = config.tiling.claim_timeout_s;
   fs::create_directories(tiles_dir);
-  const size_t temps = RemoveTemporaryFiles(tiles_dir) + RemoveTemporaryFiles(config.output.dir) +
-                       RemoveTemporaryFiles(CacheDir(config), /*recursive=*/true);
-  if (temps > 0) spdlog::info("removed {} half-written files left by an interrupted run", temps);
+  if (AnyLiveTileClaim(tiles_dir, claim_timeout_s)) {
+    spdlog::info("other workers hold tile claims: leaving temporary files alone");
+  } else {
+    const size_t temps = RemoveTemporaryFiles(tiles_dir) + RemoveTemporaryFiles(config.output.dir) +
+                         RemoveTemporaryFiles(TileCacheDir(config), /*recursive=*/true);
+    if (temps > 0) spdlog::info("removed {} half-written files left by an interrupted run", temps);
+    const size_t claims = RemoveStaleTileClaims(tiles_dir, claim_timeout_s);
+    if (claims > 0) spdlog::info("removed {} stale tile claims left by killed workers", claims);
+  }
   las_options.offset = SharedTileOffset(plan);
-  const std::string settings = ResultSettingsText(config);
   const std::string hash = ResultSettingsHash(config);
 
   TiledRunOutcome out;
   const std::set<std::string> rerun(rerun_ids.begin(), rerun_ids.end());
   std::vector<const PlannedTile*> todo;
-  std::vector<std::string> merge_order;  // LAS files of the tiles that have points, grid order
   for (const PlannedTile& tile : plan.tiles) {
     if (tile.views.empty()) continue;
     ++out.tiles_with_views;
@@ -142,15 +165,14 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
       todo.push_back(&tile);
     }
   }
-  RecordSettings(tiles_dir, settings, todo.size());
-  WriteManifest(tiles_dir, plan, las_options, hash);
+  RecordTiledRunState(config, plan, las_options, todo.size());
 
   if (!todo.empty()) {
     std::error_code ec;
     fs::remove(fused_las_path, ec);  // stale until the tiles are merged again
     const auto sp_start = std::chrono::steady_clock::now();
     out.block.superpixels_computed =
-        EnsureTiledSuperpixels(workspace, plan, config.fusion.sac, CacheDir(config), progress);
+        EnsureTiledSuperpixels(workspace, plan, config.fusion.sac, TileCacheDir(config), progress);
     out.block.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sp_start).count();
     spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",
                  out.block.superpixels_computed, workspace.views().size() - out.block.superpixels_computed,
@@ -158,40 +180,61 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
   }
   SacStats& total = out.block.stats;
   total.emitted_per_view.assign(workspace.views().size(), 0);
-  for (size_t i = 0; i < todo.size(); ++i) {
-    const PlannedTile& tile = *todo[i];
-    ClearTileState(tiles_dir, tile.id);
+  // Claims and computes one tile; false when another live worker holds it.
+  const auto attempt = [&](const PlannedTile& tile, bool forced, size_t n, size_t of) {
+    const ClaimAttempt claim = TryClaimTile(tiles_dir, tile.id, claim_timeout_s);
+    if (!claim.claimed) {
+      spdlog::info("tile {}: claimed by {}, left to it", tile.id, claim.holder);
+      return false;
+    }
+    TileClaimGuard guard(tiles_dir, tile.id, claim.token);
+    if (claim.took_over) spdlog::warn("tile {}: took over a stale claim", tile.id);
+    if (!forced && VerifyTileDone(tiles_dir, tile.id, hash).done) {
+      spdlog::info("tile {}: done by another worker", tile.id);
+      return true;
+    }
     ++out.tiles_computed;
     try {
-      const TileFusionResult r = ComputeTile(config, workspace, plan, tile, las_options, tiles_dir, hash);
+      const TileFusionResult r = ComputeTileFiles(config, workspace, plan, tile, las_options, tiles_dir, hash);
       AddSacStats(r.stats, &total);
       for (size_t v = 0; v < tile.views.size(); ++v)
         total.emitted_per_view[tile.views[v].view] += r.stats.emitted_per_view[v];
-      spdlog::info("tile {} ({}/{}): {} views, {} points in its core, {} left to neighbours", tile.id, i + 1,
-                   todo.size(), tile.views.size(), r.points_in_core, r.points_outside_core);
+      spdlog::info("tile {} ({}/{}): {} views, {} points in its core, {} left to neighbours", tile.id, n, of,
+                   tile.views.size(), r.points_in_core, r.points_outside_core);
     } catch (const std::exception& e) {
       spdlog::error("tile {}: failed: {}", tile.id, e.what());
       WriteTileFailedMarker(tiles_dir, tile.id, e.what());
       out.failed.emplace_back(tile.id, e.what());
     }
+    return true;
+  };
+  std::vector<const PlannedTile*> held;  // by other live workers
+  for (size_t i = 0; i < todo.size(); ++i) {
+    if (!attempt(*todo[i], rerun.count(todo[i]->id) > 0, i + 1, todo.size())) held.push_back(todo[i]);
     if (progress) progress("tiles", i + 1, todo.size());
+  }
+  if (!held.empty()) {
+    std::string ids;
+    for (const PlannedTile* t : held) ids += (ids.empty() ? "" : ",") + t->id;
+    spdlog::info("waiting for {} tiles held by other workers ({}), polling every second", held.size(), ids);
+  }
+  while (!held.empty()) {
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    std::vector<const PlannedTile*> still;
+    for (const PlannedTile* t : held) {
+      if (VerifyTileDone(tiles_dir, t->id, hash).done) continue;
+      // Not done and no live claim: its worker died or failed, so it is computed here.
+      if (TileClaimIsLive(tiles_dir, t->id, claim_timeout_s) || !attempt(*t, false, 1, 1)) still.push_back(t);
+    }
+    held.swap(still);
   }
   if (total.valid_nodes > 0) total.mean_correspondences /= static_cast<double>(total.valid_nodes);
   if (!out.failed.empty()) return out;
 
-  for (const PlannedTile& tile : plan.tiles) {
-    if (tile.views.empty()) continue;
-    const auto marker = ReadTileDoneMarker(tiles_dir, tile.id);
-    if (!marker) throw Error(TileDonePath(tiles_dir, tile.id) + ": done marker vanished before the merge");
-    if (marker->points > 0) merge_order.push_back(TileLasPath(tiles_dir, tile.id));
-  }
-  const MergeResult merged = MergeTileLas(merge_order, fused_las_path, las_options, [&](size_t done, size_t n) {
-    if (progress) progress("merge", done, n);
-  });
+  const MergeResult merged = MergeTiledRun(config, plan, las_options, fused_las_path, progress);
   out.merged = true;
   out.merged_points = merged.points;
   out.points_per_view = merged.points_per_view;
-  spdlog::info("merged {} tile files ({} points) into {}", merge_order.size(), merged.points, fused_las_path);
   return out;
 }
 

@@ -5,7 +5,10 @@
 //   <id>.las / <id>.done.json / <id>.failed.json   see jobs/tile_marker.h
 // Every tile LAS uses ONE scale (output.scale_m) and ONE offset: the project area's min corner (x, y) and the
 // plan's z_min, each snapped down to a multiple of 1000 m, so tiles merge losslessly.
-// A run deletes leftover "*.tmp-*" files, skips tiles whose done marker verifies, computes the rest (a tile that
+// Several workers (`sacfuse run` and `sacfuse tile` processes, on this or other machines sharing DIR) may work on
+// one job: a tile is computed only under its claim (jobs/tile_claim.h); a run leaves tiles another live worker
+// holds to it and waits for them (polling every second) before merging.
+// A run deletes leftover "*.tmp-*" files (only when no live claim exists), skips tiles whose done marker verifies, computes the rest (a tile that
 // throws gets a failed marker; the others go on), and, when every tile with views is done, merges the tile
 // files in grid order into DIR/fused.las.
 #include <cstdint>
@@ -18,6 +21,7 @@
 #include "io/las_writer.h"
 #include "jobs/sac_block.h"
 #include "jobs/tile_plan.h"
+#include "jobs/tiled_sac.h"
 
 namespace sacfuse {
 
@@ -37,6 +41,18 @@ std::string TilesDir(const JobConfig& config);
 Eigen::Vector3d SharedTileOffset(const TilePlan& plan);
 // Ids of the plan's tiles with views, grid order.
 std::vector<std::string> TileIdsWithViews(const TilePlan& plan);
+
+// The superpixel cache folder of a config (fusion.superpixel_cache_dir or DIR/superpixels).
+std::string TileCacheDir(const JobConfig& config);
+// Writes tiles/run_config.yaml (warning which result-affecting keys changed) and tiles/manifest.json.
+// `las.offset` must be set.
+void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
+                         size_t tiles_to_compute);
+// Computes one tile (the caller holds its claim) into <id>.las and <id>.done.json, after clearing its old state;
+// logs "computing tile <id>". Needs the superpixel caches of the tile's views. Throws whatever the tile throws.
+TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
+                                  const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
+                                  const std::string& hash);
 
 // `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done.
 TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,

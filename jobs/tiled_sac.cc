@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <vector>
 
 
 #include "core/error.h"
@@ -133,13 +134,21 @@ void AddSacStats(const SacStats& s, SacStats* total) {
 }
 
 size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
-                              const std::string& superpixel_cache_dir, const SacProgress& progress) {
+                              const std::string& superpixel_cache_dir, const SacProgress& progress,
+                              const PlannedTile* only_tile) {
   const auto& views = workspace.views();
+  std::vector<size_t> todo;
+  if (only_tile == nullptr) {
+    for (size_t v = 0; v < views.size(); ++v) todo.push_back(v);
+  } else {
+    for (const TileViewWindow& tw : only_tile->views) todo.push_back(tw.view);
+  }
   size_t computed = 0;
-  for (size_t v = 0; v < views.size(); ++v) {
+  for (size_t i = 0; i < todo.size(); ++i) {
+    const size_t v = todo[i];
     computed += EnsureSuperpixels(workspace, views[v], plan.depth_sizes[v], options.superpixels,
                                   superpixel_cache_dir) ? 1 : 0;
-    if (progress) progress("superpixels", v + 1, views.size());
+    if (progress) progress("superpixels", i + 1, todo.size());
   }
   return computed;
 }

@@ -13,10 +13,11 @@
 
 namespace sacfuse {
 
-// Computes the superpixel cache of every view that lacks a current one (nothing is read for the others);
-// returns how many were computed.
+// Computes the superpixel cache of every view (only the views of `only_tile` when given) that lacks a current one
+// (nothing is read for the others); returns how many were computed.
 size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
-                              const std::string& superpixel_cache_dir, const SacProgress& progress = {});
+                              const std::string& superpixel_cache_dir, const SacProgress& progress = {},
+                              const PlannedTile* only_tile = nullptr);
 
 struct TileFusionResult {
   SacStats stats;                    // of the tile's halo (emitted_per_view indexed like tile.views)

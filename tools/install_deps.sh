@@ -16,6 +16,7 @@ PKGS=(
   libnanoflann-dev         # kd-trees (eval, correspondences)
   libtiff-dev              # depth rasters
   libgtest-dev libgmock-dev # tests
+  parallel                 # GNU parallel: running `sacfuse tile` workers (tests/queue_e2e_test.cc)
 )
 missing=()
 for p in "${PKGS[@]}"; do

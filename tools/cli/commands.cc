@@ -14,6 +14,8 @@ int Main(int argc, char** argv) {
   AddRunCommand(app, &exit_code);
   AddPlanCommand(app, &exit_code);
   AddStatusCommand(app, &exit_code);
+  AddTileCommand(app, &exit_code);
+  AddMergeCommand(app, &exit_code);
   AddSimulateCommand(app, &exit_code);
   AddEvalCommand(app, &exit_code);
   AddVersionCommand(app, &exit_code);

@@ -1,5 +1,6 @@
 // `sacfuse plan CONFIG`: the geo-tiles of a job, the views and depth windows each needs, and an estimate of the
-// memory each tile's rasters take; prints a table and writes <output.dir>/plan.json.
+// memory each tile's rasters take; prints a table and writes <output.dir>/plan.json (shared by every worker).
+// --list prints only the ids of the tiles with views, one per line.
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -36,16 +37,25 @@ void PrintPlanTable(const TilePlan& plan, std::ostream& out) {
 
 void AddPlanCommand(CLI::App& app, int* exit_code) {
   auto config_path = std::make_shared<std::string>();
+  auto list = std::make_shared<bool>(false);
   auto* cmd = app.add_subcommand("plan", "Plan the geo-tiles of a job: views and depth windows per tile, memory "
                                          "estimate; prints a table and writes DIR/plan.json");
   cmd->add_option("CONFIG", *config_path, "YAML config (the tiling.* keys; see sacfuse run --print-defaults)")
       ->required();
-  cmd->callback([config_path, exit_code] {
-    SetupLogging("info");
+  cmd->add_flag("--list", *list, "Print only the ids of the tiles with views, one per line (for GNU parallel or "
+                                 "SLURM arrays driving `sacfuse tile`)");
+  cmd->callback([config_path, list, exit_code] {
+    SetupLogging(*list ? "warn" : "info");
     *exit_code = RunGuarded([&] {
       const JobConfig config = LoadJobConfig(*config_path);
       std::string plan_path;
       const TilePlan plan = PlanJob(config, &plan_path);
+      if (*list) {
+        for (const PlannedTile& t : plan.tiles) {
+          if (!t.views.empty()) std::cout << t.id << "\n";
+        }
+        return kExitOk;
+      }
       PrintPlanTable(plan, std::cout);
       std::cout << "plan: " << plan_path << "\n";
       return kExitOk;

@@ -1,6 +1,7 @@
 // `sacfuse status CONFIG`: which tiles of a tiled run are done, failed or pending, from DIR/tiles/ alone (the
 // manifest and the markers; no plan is built and nothing is computed). A done tile is re-checked against its
 // LAS file's size and header count and the current config's hash; --verify also recomputes the checksums.
+// A pending tile that a live worker has claimed (jobs/tile_claim.h) names the worker.
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -13,6 +14,7 @@
 #include "config/job_config.h"
 #include "config/result_settings.h"
 #include "core/error.h"
+#include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
 #include "jobs/tiled_run.h"
 #include "tools/cli/cli_support.h"
@@ -65,7 +67,12 @@ int StatusCommand(const StatusArgs& args) {
   for (const auto& id : done) std::cout << "done     " << id << "\n";
   for (size_t i = 0; i < failed.size(); ++i) std::cout << "failed   " << failed[i] << ": " << failed_reasons[i] << "\n";
   for (size_t i = 0; i < pending.size(); ++i) {
-    std::cout << "pending  " << pending[i] << " (" << pending_reasons[i] << ")\n";
+    std::cout << "pending  " << pending[i] << " (" << pending_reasons[i];
+    if (TileClaimIsLive(tiles_dir, pending[i], config.tiling.claim_timeout_s)) {
+      const auto claim = ReadTileClaim(tiles_dir, pending[i]);
+      std::cout << "; claimed by " << (claim ? DescribeClaim(*claim) : "a worker");
+    }
+    std::cout << ")\n";
   }
   const bool merged = std::filesystem::exists(std::filesystem::path(config.output.dir) / "fused.las");
   std::cout << "fused.las: " << (merged && done.size() == total ? "merged" : "not merged") << "\n";

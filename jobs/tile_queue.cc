@@ -1,0 +1,121 @@
+#include "jobs/tile_queue.h"
+
+#include <filesystem>
+
+#include <spdlog/spdlog.h>
+
+#include "config/result_settings.h"
+#include "core/error.h"
+#include "io/colmap_workspace.h"
+#include "jobs/run_fusion.h"
+#include "jobs/tile_claim.h"
+#include "jobs/tile_marker.h"
+#include "jobs/tiled_run.h"
+#include "jobs/tiled_sac.h"
+
+namespace sacfuse {
+namespace fs = std::filesystem;
+namespace {
+
+ColmapWorkspace OpenTiledWorkspace(const JobConfig& config) {
+  ValidateJobConfig(config);
+  if (config.fusion.method != "sac" || config.tiling.tile_size_m <= 0) {
+    throw ConfigError("not a tiled run: tiles need fusion.method sac and tiling.tile_size_m > 0");
+  }
+  ColmapWorkspace workspace(config.input.path, config.input.depth_type == "photometric"
+                                                   ? ColmapDepthType::kPhotometric
+                                                   : ColmapDepthType::kGeometric);
+  if (workspace.views().empty()) throw InputError(config.input.path, "the workspace has no images to fuse");
+  return workspace;
+}
+
+LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
+  LasWriterOptions las = MakeLasOptions(config.output);
+  las.offset = SharedTileOffset(plan);
+  return las;
+}
+
+}  // namespace
+
+TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id) {
+  const ColmapWorkspace workspace = OpenTiledWorkspace(config);
+  const TilePlan plan = SharedTilePlan(config, workspace);
+  const PlannedTile* tile = nullptr;
+  for (const PlannedTile& t : plan.tiles) {
+    if (t.id == id && !t.views.empty()) tile = &t;
+  }
+  if (tile == nullptr) {
+    throw ConfigError("--id " + id + ": not a tile with views of this job (see `sacfuse plan CONFIG --list`)");
+  }
+  const std::string tiles_dir = TilesDir(config);
+  const std::string hash = ResultSettingsHash(config);
+  fs::create_directories(tiles_dir);
+  TileWorkOutcome out;
+  if (VerifyTileDone(tiles_dir, id, hash).done) return out;
+  const ClaimAttempt claim = TryClaimTile(tiles_dir, id, config.tiling.claim_timeout_s);
+  if (!claim.claimed) {
+    out.result = TileWork::kHeldElsewhere;
+    out.detail = claim.holder;
+    return out;
+  }
+  TileClaimGuard guard(tiles_dir, id, claim.token);
+  if (claim.took_over) spdlog::warn("tile {}: took over a stale claim", id);
+  if (VerifyTileDone(tiles_dir, id, hash).done) return out;  // finished while we were claiming
+  const LasWriterOptions las = TileLasOptions(config, plan);
+  RecordTiledRunState(config, plan, las, 1);
+  std::error_code ec;
+  fs::remove(FusedLasPath(config), ec);  // stale until the tiles are merged again
+  try {
+    EnsureTiledSuperpixels(workspace, plan, config.fusion.sac, TileCacheDir(config), {}, tile);
+    const TileFusionResult r = ComputeTileFiles(config, workspace, plan, *tile, las, tiles_dir, hash);
+    out.result = TileWork::kComputed;
+    out.points = r.points_in_core;
+    spdlog::info("tile {}: {} views, {} points in its core, {} left to neighbours", id, tile->views.size(),
+                 r.points_in_core, r.points_outside_core);
+  } catch (const std::exception& e) {
+    spdlog::error("tile {}: failed: {}", id, e.what());
+    WriteTileFailedMarker(tiles_dir, id, e.what());
+    out.result = TileWork::kFailed;
+    out.detail = e.what();
+  }
+  return out;
+}
+
+std::vector<std::string> MissingTiles(const JobConfig& config, const TilePlan& plan) {
+  const std::string tiles_dir = TilesDir(config);
+  const std::string hash = ResultSettingsHash(config);
+  std::vector<std::string> missing;
+  for (const std::string& id : TileIdsWithViews(plan)) {
+    if (!VerifyTileDone(tiles_dir, id, hash).done) missing.push_back(id);
+  }
+  return missing;
+}
+
+MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
+                          const std::string& fused_las_path, const SacProgress& progress) {
+  const std::string tiles_dir = TilesDir(config);
+  std::vector<std::string> merge_order;  // LAS files of the tiles that have points, grid order
+  for (const std::string& id : TileIdsWithViews(plan)) {
+    const auto marker = ReadTileDoneMarker(tiles_dir, id);
+    if (!marker) throw Error(TileDonePath(tiles_dir, id) + ": done marker vanished before the merge");
+    if (marker->points > 0) merge_order.push_back(TileLasPath(tiles_dir, id));
+  }
+  const MergeResult merged = MergeTileLas(merge_order, fused_las_path, las, [&](size_t done, size_t n) {
+    if (progress) progress("merge", done, n);
+  });
+  spdlog::info("merged {} tile files ({} points) into {}", merge_order.size(), merged.points, fused_las_path);
+  return merged;
+}
+
+MergeJobOutcome MergeJob(const JobConfig& config) {
+  const ColmapWorkspace workspace = OpenTiledWorkspace(config);
+  const TilePlan plan = SharedTilePlan(config, workspace);
+  MergeJobOutcome out;
+  out.fused_las_path = FusedLasPath(config);
+  out.missing = MissingTiles(config, plan);
+  if (!out.missing.empty()) return out;
+  out.merged = MergeTiledRun(config, plan, TileLasOptions(config, plan), out.fused_las_path);
+  return out;
+}
+
+}  // namespace sacfuse

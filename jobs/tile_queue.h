@@ -1,0 +1,53 @@
+#pragma once
+// The tile list of a tiled run as a work queue for several processes or machines sharing DIR:
+//   `sacfuse plan CONFIG --list`   the tile ids with views (SharedTilePlan, jobs/tile_plan.h)
+//   `sacfuse tile CONFIG --id ID`  RunOneTile: computes exactly one tile under its claim (jobs/tile_claim.h)
+//   `sacfuse merge CONFIG`         MergeJob: merges once every tile with views is done
+// and `sacfuse run` (jobs/tiled_run.h) honours the same claims, so all of them can be mixed.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "config/job_config.h"
+#include "io/las_writer.h"
+#include "jobs/sac_block.h"
+#include "jobs/tile_merge.h"
+#include "jobs/tile_plan.h"
+
+namespace sacfuse {
+
+enum class TileWork {
+  kAlreadyDone,    // its done marker verifies: nothing to do
+  kHeldElsewhere,  // another live worker holds its claim: nothing to do here
+  kComputed,
+  kFailed,         // <id>.failed.json written
+};
+
+struct TileWorkOutcome {
+  TileWork result = TileWork::kAlreadyDone;
+  std::string detail;   // kHeldElsewhere: the holder; kFailed: the reason
+  uint64_t points = 0;  // kComputed: points in the tile's core
+};
+
+// Computes tile `id` (a tile with views of the shared plan, else ConfigError) unless it is done or claimed by a
+// live worker; the claim is removed when the tile is done or failed. Computing removes DIR/fused.las (stale).
+TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id);
+
+// Tiles with views whose done marker does not verify (full checksum), grid order.
+std::vector<std::string> MissingTiles(const JobConfig& config, const TilePlan& plan);
+
+// Streams the done tiles' LAS files, grid order, into `fused_las_path`; `las.offset` must be the plan's shared
+// offset. Throws Error when a tile with views has no done marker.
+MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
+                          const std::string& fused_las_path, const SacProgress& progress = {});
+
+struct MergeJobOutcome {
+  std::vector<std::string> missing;  // not empty: nothing was merged
+  std::string fused_las_path;
+  MergeResult merged;
+};
+
+// `sacfuse merge`: ConfigError unless the config is a tiled SAC run.
+MergeJobOutcome MergeJob(const JobConfig& config);
+
+}  // namespace sacfuse

@@ -1,0 +1,45 @@
+// `sacfuse merge CONFIG`: merges the tiles of a tiled run into DIR/fused.las once every tile with views is done
+// (exit 1 listing the missing tiles otherwise); the last step after `sacfuse tile` workers.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "config/job_config.h"
+#include "jobs/tile_queue.h"
+#include "tools/cli/cli_support.h"
+#include "tools/cli/commands.h"
+
+namespace sacfuse::cli {
+namespace {
+
+int MergeCommand(const std::string& config_path) {
+  const JobConfig config = LoadJobConfig(config_path);
+  SetupLogging(config.log.level, (std::filesystem::path(config.output.dir) / "sacfuse.log").string());
+  const MergeJobOutcome out = MergeJob(config);
+  if (!out.missing.empty()) {
+    std::cout << out.missing.size() << " tiles are not done; nothing merged. Missing:";
+    for (const auto& id : out.missing) std::cout << " " << id;
+    std::cout << "\ncompute them with `sacfuse tile " << config_path << " --id ID` or `sacfuse run "
+              << config_path << "`\n";
+    return kExitFailure;
+  }
+  std::cout << "fused cloud: " << out.fused_las_path << " (" << out.merged.points << " points)\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddMergeCommand(CLI::App& app, int* exit_code) {
+  auto config_path = std::make_shared<std::string>();
+  auto* cmd = app.add_subcommand("merge", "Merge the done tiles of a tiled run into DIR/fused.las (exit 1 listing "
+                                          "the missing tiles when some are not done)");
+  cmd->add_option("CONFIG", *config_path, "YAML config of the run")->required();
+  cmd->callback([config_path, exit_code] {
+    SetupLogging("info");
+    *exit_code = RunGuarded([&] { return MergeCommand(*config_path); });
+  });
+}
+
+}  // namespace sacfuse::cli

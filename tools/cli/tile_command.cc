@@ -1,0 +1,59 @@
+// `sacfuse tile CONFIG --id ID`: computes exactly one tile of a tiled run, for running tiles as separate
+// processes or on several machines sharing DIR (GNU parallel, SLURM arrays; see tools/slurm_array_example.sh).
+// Idempotent and safe to run concurrently: a done tile is skipped and a tile another live worker has claimed is
+// left to it (both exit 0); see jobs/tile_queue.h and jobs/tile_claim.h.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "config/job_config.h"
+#include "jobs/tile_queue.h"
+#include "tools/cli/cli_support.h"
+#include "tools/cli/commands.h"
+
+namespace sacfuse::cli {
+namespace {
+
+struct TileArgs {
+  std::string config_path;
+  std::string id;
+};
+
+int TileCommand(const TileArgs& args) {
+  const JobConfig config = LoadJobConfig(args.config_path);
+  SetupLogging(config.log.level, (std::filesystem::path(config.output.dir) / "sacfuse.log").string());
+  const TileWorkOutcome out = RunOneTile(config, args.id);
+  switch (out.result) {
+    case TileWork::kAlreadyDone:
+      std::cout << "tile " << args.id << ": done, skipped\n";
+      return kExitOk;
+    case TileWork::kHeldElsewhere:
+      std::cout << "tile " << args.id << ": claimed by " << out.detail << ", skipped\n";
+      return kExitOk;
+    case TileWork::kComputed:
+      std::cout << "tile " << args.id << ": computed, " << out.points << " points\n";
+      return kExitOk;
+    case TileWork::kFailed:
+      std::cout << "tile " << args.id << ": failed: " << out.detail << "\n";
+      return kExitFailure;
+  }
+  return kExitFailure;
+}
+
+}  // namespace
+
+void AddTileCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<TileArgs>();
+  auto* cmd = app.add_subcommand("tile", "Compute one tile of a tiled run (skipped when done or claimed by another "
+                                         "live worker); for parallel / multi-machine runs");
+  cmd->add_option("CONFIG", args->config_path, "YAML config of the run")->required();
+  cmd->add_option("--id", args->id, "Tile id such as 3_4 (see sacfuse plan CONFIG --list)")->required();
+  cmd->callback([args, exit_code] {
+    SetupLogging("info");
+    *exit_code = RunGuarded([&] { return TileCommand(*args); });
+  });
+}
+
+}  // namespace sacfuse::cli
