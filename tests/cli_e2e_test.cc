@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/las_reader.h"
-#include "tests/support/test_support.h"
+#include "tests/support/block_suite.h"
 
 namespace sacfuse {
 namespace {
@@ -20,45 +20,23 @@ using testing::SacfuseBinary;
 using testing::TempDir;
 
 // One simulated tiny block shared by the tests of this file (simulation takes a few seconds).
-class CliEndToEndTest : public ::testing::Test {
+class CliEndToEndTest : public testing::TinyBlockSuite {
  protected:
-  static void SetUpTestSuite() {
-    dir_ = new TempDir();
-    std::string out;
-    const int code = RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " +
-                                    ShellQuote(dir_->path() / "block"),
-                                &out);
-    ASSERT_EQ(code, 0) << out;
-  }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static fs::path Block() { return dir_->path() / "block"; }
-  static double BlockGsd() {
-    std::ifstream in(Block() / "metadata.json");
-    return nlohmann::json::parse(in).at("gsd_m").get<double>();
-  }
-
   // Writes a config fusing the block with `method` into `out_dir`; returns its path.
   static fs::path WriteConfig(const std::string& name, const std::string& method, const std::string& extra = "") {
-    const fs::path path = dir_->path() / (name + ".yaml");
+    const fs::path path = Dir() / (name + ".yaml");
     std::ofstream(path) << "input: {format: colmap, path: " << Block().string() << "}\n"
-                        << "output: {dir: " << (dir_->path() / name).string() << "}\n"
+                        << "output: {dir: " << (Dir() / name).string() << "}\n"
                         << "fusion:\n  method: " << method << "\n"
                         << extra
                         << "evaluation:\n  reference: " << (Block() / "reference.las").string() << "\n"
                         << "  mask: " << (Block() / "eval_mask.png").string() << "\n  gsd_m: " << BlockGsd() << "\n";
     return path;
   }
-
-  static inline TempDir* dir_ = nullptr;
 };
 
 double F1FromJson(const fs::path& eval_json, size_t threshold_index) {
-  std::ifstream in(eval_json);
-  const nlohmann::json j = nlohmann::json::parse(in);
-  return j.at("scores").at(threshold_index).at("f1").get<double>();
+  return testing::EvalF1(eval_json, threshold_index);
 }
 
 TEST_F(CliEndToEndTest, SimulateWritesACompleteWorkspace) {
@@ -74,7 +52,7 @@ TEST_F(CliEndToEndTest, SacBeatsTheUnionOnF1WithFewerPoints) {
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("sac", "sac")), &out), 0) << out;
   EXPECT_NE(out.find("fused cloud:"), std::string::npos) << out;
   EXPECT_NE(out.find("F1 @"), std::string::npos) << out;
-  const fs::path u = dir_->path() / "union", s = dir_->path() / "sac";
+  const fs::path u = Dir() / "union", s = Dir() / "sac";
   for (const fs::path& d : {u, s}) {
     for (const char* f : {"fused.las", "sacfuse.effective.yaml", "run_report.json", "eval.json", "sacfuse.log"}) {
       EXPECT_TRUE(fs::exists(d / f)) << (d / f);
@@ -127,8 +105,8 @@ TEST_F(CliEndToEndTest, DenseCorrespondencesFromConsistencyGraphs) {
       << out;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("union_for_dense", "union")), &out), 0) << out;
   for (size_t t = 0; t < 2; ++t) {
-    EXPECT_GT(F1FromJson(dir_->path() / "dense" / "eval.json", t),
-              F1FromJson(dir_->path() / "union_for_dense" / "eval.json", t));
+    EXPECT_GT(F1FromJson(Dir() / "dense" / "eval.json", t),
+              F1FromJson(Dir() / "union_for_dense" / "eval.json", t));
   }
 }
 
@@ -137,16 +115,16 @@ TEST_F(CliEndToEndTest, SuperpixelsAreReusedOnASecondRun) {
   std::string first, second;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &first), 0) << first;
   EXPECT_NE(first.find("0 reused"), std::string::npos) << first;
-  fs::copy_file(dir_->path() / "rerun" / "fused.las", dir_->path() / "first.las");
+  fs::copy_file(Dir() / "rerun" / "fused.las", Dir() / "first.las");
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &second), 0) << second;
   EXPECT_NE(second.find("0 computed"), std::string::npos) << second;
   // Same result both times, byte for byte.
-  EXPECT_EQ(testing::ReadFileBytes(dir_->path() / "first.las"),
-            testing::ReadFileBytes(dir_->path() / "rerun" / "fused.las"));
+  EXPECT_EQ(testing::ReadFileBytes(Dir() / "first.las"),
+            testing::ReadFileBytes(Dir() / "rerun" / "fused.las"));
 }
 
 TEST_F(CliEndToEndTest, ConfigErrorsExitTwoAndNameKeyAndLine) {
-  const fs::path path = dir_->path() / "bad.yaml";
+  const fs::path path = Dir() / "bad.yaml";
   std::ofstream(path) << "input:\n  path: x\n  fromat: colmap\noutput: {scale_m: 0.003}\n";
   std::string out;
   EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(path), &out), 2);
@@ -155,7 +133,7 @@ TEST_F(CliEndToEndTest, ConfigErrorsExitTwoAndNameKeyAndLine) {
 
 TEST_F(CliEndToEndTest, CorruptDepthMapFailsNamingTheFileAndLeavesNoLas) {
   // Copy the block and truncate one depth map.
-  const fs::path copy = dir_->path() / "corrupt_block";
+  const fs::path copy = Dir() / "corrupt_block";
   fs::copy(Block(), copy, fs::copy_options::recursive);
   fs::path victim;
   for (const auto& e : fs::recursive_directory_iterator(copy / "stereo" / "depth_maps")) {
@@ -166,14 +144,14 @@ TEST_F(CliEndToEndTest, CorruptDepthMapFailsNamingTheFileAndLeavesNoLas) {
   }
   ASSERT_FALSE(victim.empty());
   fs::resize_file(victim, fs::file_size(victim) / 2);
-  const fs::path config = dir_->path() / "corrupt.yaml";
+  const fs::path config = Dir() / "corrupt.yaml";
   std::ofstream(config) << "input: {path: " << copy.string() << "}\noutput: {dir: "
-                        << (dir_->path() / "corrupt_out").string() << "}\n";
+                        << (Dir() / "corrupt_out").string() << "}\n";
   std::string out;
   EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 1) << out;
   EXPECT_NE(out.find(victim.filename().string()), std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(dir_->path() / "corrupt_out" / "fused.las"));
-  for (const auto& e : fs::directory_iterator(dir_->path() / "corrupt_out")) {
+  EXPECT_FALSE(fs::exists(Dir() / "corrupt_out" / "fused.las"));
+  for (const auto& e : fs::directory_iterator(Dir() / "corrupt_out")) {
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << "temporary file left: " << e.path();
   }
 }
@@ -181,8 +159,8 @@ TEST_F(CliEndToEndTest, CorruptDepthMapFailsNamingTheFileAndLeavesNoLas) {
 TEST_F(CliEndToEndTest, EvalCommandPrintsATableAndJson) {
   std::string out;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("for_eval", "union")), &out), 0) << out;
-  const fs::path json = dir_->path() / "eval_cmd.json";
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(dir_->path() / "for_eval" / "fused.las") + " --reference " +
+  const fs::path json = Dir() / "eval_cmd.json";
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(Dir() / "for_eval" / "fused.las") + " --reference " +
                            ShellQuote(Block() / "reference.las") + " --gsd 0.1 --tau-gsd 2,5 --json " + ShellQuote(json),
                        &out),
             0)

@@ -13,24 +13,19 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/support/test_support.h"
+#include "tests/support/block_suite.h"
 
 namespace sacfuse {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::CountFilesNamedWith;
 using testing::ReadFileBytes;
+using testing::WithoutLasCreationDate;
 using testing::RunCommand;
 using testing::SacfuseBinary;
 using testing::ShellQuote;
 using testing::TempDir;
-
-constexpr size_t kCreationDateOffset = 90;  // creation day-of-year and year, u16 each
-
-std::string WithoutCreationDate(std::string bytes) {
-  if (bytes.size() > kCreationDateOffset + 4) bytes.replace(kCreationDateOffset, 4, 4, '\0');
-  return bytes;
-}
 
 std::vector<std::string> Lines(const std::string& text) {
   std::vector<std::string> lines;
@@ -52,40 +47,23 @@ std::map<std::string, int> ComputedTiles(const std::string& log) {
   return n;
 }
 
-size_t FilesContaining(const fs::path& dir, const std::string& part) {
-  size_t n = 0;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    n += e.path().filename().string().find(part) != std::string::npos ? 1 : 0;
-  }
-  return n;
-}
-
 bool HaveParallel() { return std::system("parallel --version >/dev/null 2>&1") == 0; }
 
-class QueueEndToEndTest : public ::testing::Test {
+class QueueEndToEndTest : public testing::TinyBlockSuite {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir();
+    SimulateBlock();
     std::string out;
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + ShellQuote(Block()), &out), 0)
-        << out;
     for (const std::string name : {"ref", "par", "dup", "early", "mixed"}) {
       std::ofstream(Config(name)) << "input: {path: " << Block().string() << "}\n"
                                   << "output: {dir: " << Out(name).string() << "}\n"
                                   << "tiling: {tile_size_m: 20, halo_m: 5}\n";
     }
     ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("ref")), &out), 0) << out;
-    reference_ = WithoutCreationDate(ReadFileBytes(Out("ref") / "fused.las"));
+    reference_ = WithoutLasCreationDate(ReadFileBytes(Out("ref") / "fused.las"));
     ASSERT_EQ(RunCommand(SacfuseBinary() + " plan --list " + ShellQuote(Config("early")) + " 2>/dev/null", &out), 0);
     ids_ = Lines(out);
   }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static fs::path Block() { return dir_->path() / "block"; }
-  static fs::path Config(const std::string& name) { return dir_->path() / (name + ".yaml"); }
-  static fs::path Out(const std::string& name) { return dir_->path() / name; }
   static std::string Tile(const std::string& name) {
     return SacfuseBinary() + " tile " + ShellQuote(Config(name)) + " --id ";
   }
@@ -93,13 +71,12 @@ class QueueEndToEndTest : public ::testing::Test {
     const std::map<std::string, int> computed = ComputedTiles(log);
     EXPECT_EQ(computed.size(), ids_.size()) << log;
     for (const auto& id : ids_) EXPECT_EQ(computed.count(id) ? computed.at(id) : 0, 1) << "tile " << id;
-    EXPECT_EQ(FilesContaining(Out(name) / "tiles", ".done.json"), ids_.size());
-    EXPECT_EQ(FilesContaining(Out(name) / "tiles", ".claim"), 0u);
-    EXPECT_EQ(FilesContaining(Out(name), ".tmp-"), 0u);
-    EXPECT_TRUE(WithoutCreationDate(ReadFileBytes(Out(name) / "fused.las")) == reference_)
+    EXPECT_EQ(CountFilesNamedWith(Out(name) / "tiles", ".done.json"), ids_.size());
+    EXPECT_EQ(CountFilesNamedWith(Out(name) / "tiles", ".claim"), 0u);
+    EXPECT_EQ(CountFilesNamedWith(Out(name), ".tmp-"), 0u);
+    EXPECT_TRUE(WithoutLasCreationDate(ReadFileBytes(Out(name) / "fused.las")) == reference_)
         << "fused.las differs from the plain run's";
   }
-  static inline TempDir* dir_ = nullptr;
   static inline std::string reference_;
   static inline std::vector<std::string> ids_;
 };
@@ -131,7 +108,7 @@ TEST_F(QueueEndToEndTest, SameTileTwiceAtOnceIsComputedOnce) {
   for (size_t p = log.find("exit=0"); p != std::string::npos; p = log.find("exit=0", p + 1)) ++ok;
   EXPECT_EQ(ok, 2u) << log;
   EXPECT_TRUE(fs::exists(Out("dup") / "tiles" / (id + ".done.json")));
-  EXPECT_EQ(FilesContaining(Out("dup") / "tiles", ".claim"), 0u);
+  EXPECT_EQ(CountFilesNamedWith(Out("dup") / "tiles", ".claim"), 0u);
   // A third call finds it done.
   ASSERT_EQ(RunCommand(Tile("dup") + id, &log), 0) << log;
   EXPECT_NE(log.find("tile " + id + ": done, skipped"), std::string::npos) << log;

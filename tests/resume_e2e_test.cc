@@ -14,25 +14,19 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "tests/support/test_support.h"
+#include "tests/support/block_suite.h"
 
 namespace sacfuse {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::CountFilesNamedWith;
 using testing::ReadFileBytes;
+using testing::WithoutLasCreationDate;
 using testing::RunCommand;
 using testing::ShellQuote;
 using testing::SacfuseBinary;
 using testing::TempDir;
-
-constexpr size_t kCreationDateOffset = 90;  // creation day-of-year and year, u16 each
-
-// LAS bytes with the creation date blanked: two runs of the same job must agree on everything else.
-std::string WithoutCreationDate(std::string bytes) {
-  if (bytes.size() > kCreationDateOffset + 4) bytes.replace(kCreationDateOffset, 4, 4, '\0');
-  return bytes;
-}
 
 // done.json contents by tile id.
 std::map<std::string, std::string> DoneMarkers(const fs::path& tiles_dir) {
@@ -45,13 +39,7 @@ std::map<std::string, std::string> DoneMarkers(const fs::path& tiles_dir) {
   return markers;
 }
 
-size_t TemporaryFilesUnder(const fs::path& dir) {
-  size_t n = 0;
-  for (const auto& e : fs::recursive_directory_iterator(dir)) {
-    n += e.path().filename().string().find(".tmp-") != std::string::npos ? 1 : 0;
-  }
-  return n;
-}
+size_t TemporaryFilesUnder(const fs::path& dir) { return CountFilesNamedWith(dir, ".tmp-"); }
 
 // The "tiles: N computed, M done and skipped" line of a run's output.
 std::string TilesLine(const std::string& out) {
@@ -60,12 +48,11 @@ std::string TilesLine(const std::string& out) {
   return out.substr(begin + 1, out.find('\n', begin + 1) - begin - 1);
 }
 
-class ResumeEndToEndTest : public ::testing::Test {
+class ResumeEndToEndTest : public testing::TinyBlockSuite {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir();
+    SimulateBlock();
     std::string out;
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + ShellQuote(Block()), &out), 0) << out;
     for (const std::string name : {"a", "b"}) {
       std::ofstream(Config(name)) << "input: {path: " << Block().string() << "}\n"
                                   << "output: {dir: " << Out(name).string() << "}\n"
@@ -74,15 +61,8 @@ class ResumeEndToEndTest : public ::testing::Test {
     const auto t0 = std::chrono::steady_clock::now();
     ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("a")), &out), 0) << out;
     run_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    reference_ = WithoutCreationDate(ReadFileBytes(Out("a") / "fused.las"));
+    reference_ = WithoutLasCreationDate(ReadFileBytes(Out("a") / "fused.las"));
   }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static fs::path Block() { return dir_->path() / "block"; }
-  static fs::path Config(const std::string& name) { return dir_->path() / (name + ".yaml"); }
-  static fs::path Out(const std::string& name) { return dir_->path() / name; }
   static fs::path Tiles(const std::string& name) { return Out(name) / "tiles"; }
   static std::string Run(const std::string& name, const std::string& extra, int* code) {
     std::string out;
@@ -90,13 +70,12 @@ class ResumeEndToEndTest : public ::testing::Test {
     return out;
   }
   static void ExpectFusedMatchesReference(const std::string& name) {
-    const std::string fused = WithoutCreationDate(ReadFileBytes(Out(name) / "fused.las"));
+    const std::string fused = WithoutLasCreationDate(ReadFileBytes(Out(name) / "fused.las"));
     EXPECT_GT(reference_.size(), 100000u);
     EXPECT_EQ(fused.size(), reference_.size());
     EXPECT_TRUE(fused == reference_) << name << "/fused.las differs from the uninterrupted run's";
   }
 
-  static inline TempDir* dir_ = nullptr;
   static inline std::string reference_;
   static inline double run_seconds_ = 0.0;
 };

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/las_reader.h"
-#include "tests/support/test_support.h"
+#include "tests/support/block_suite.h"
 
 namespace sacfuse {
 namespace {
@@ -26,23 +26,14 @@ using testing::ShellQuote;
 using testing::SacfuseBinary;
 using testing::TempDir;
 
-nlohmann::json ReadJson(const fs::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in);
-}
+nlohmann::json ReadJson(const fs::path& path) { return testing::ReadJsonFile(path); }
+double F1(const fs::path& eval_json, size_t threshold) { return testing::EvalF1(eval_json, threshold); }
 
-double F1(const fs::path& eval_json, size_t threshold) {
-  return ReadJson(eval_json).at("scores").at(threshold).at("f1").get<double>();
-}
-
-class TilingEndToEndTest : public ::testing::Test {
+class TilingEndToEndTest : public testing::TinyBlockSuite {
  protected:
   static void SetUpTestSuite() {
-    dir_ = new TempDir();
-    std::string out;
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + ShellQuote(Block()), &out), 0)
-        << out;
-    const double gsd = ReadJson(Block() / "metadata.json").at("gsd_m").get<double>();
+    SimulateBlock();
+    const double gsd = BlockGsd();
     for (const auto& [name, tile] : {std::pair<std::string, double>{"untiled", 0.0}, {"tiled", 20.0}}) {
       std::ofstream(Config(name)) << "input: {path: " << Block().string() << "}\n"
                                   << "output: {dir: " << Out(name).string() << "}\n"
@@ -52,15 +43,6 @@ class TilingEndToEndTest : public ::testing::Test {
                                   << "}\n";
     }
   }
-  static void TearDownTestSuite() {
-    delete dir_;
-    dir_ = nullptr;
-  }
-  static fs::path Block() { return dir_->path() / "block"; }
-  static fs::path Config(const std::string& name) { return dir_->path() / (name + ".yaml"); }
-  static fs::path Out(const std::string& name) { return dir_->path() / name; }
-
-  static inline TempDir* dir_ = nullptr;
 };
 
 TEST_F(TilingEndToEndTest, PlanPrintsEveryTileAndWritesViewsAndWindows) {
@@ -82,7 +64,7 @@ TEST_F(TilingEndToEndTest, PlanPrintsEveryTileAndWritesViewsAndWindows) {
     tiles_with_views += tile.at("views").empty() ? 0 : 1;
   }
   EXPECT_GT(tiles_with_views, 4u);
-  EXPECT_EQ(RunCommand(SacfuseBinary() + " plan " + ShellQuote(dir_->path() / "missing.yaml"), &out), 2) << out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " plan " + ShellQuote(Dir() / "missing.yaml"), &out), 2) << out;
 }
 
 TEST_F(TilingEndToEndTest, TiledRunStitchesWithoutSeamsAndMatchesUntiled) {
