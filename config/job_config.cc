@@ -65,7 +65,8 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddFloat("superpixels.depth_weight", &sp.depth_weight, "weight of depth as an extra SLIC channel (0 = off)");
   TilingOptions& t = c->tiling;
   s.AddDouble("tiling.tile_size_m", &t.tile_size_m,
-              "geo-tile edge, metres; 0 = one tile covering everything (untiled); >= 0");
+              "geo-tile edge, metres; 0 = automatic: untiled when the block fits in resources.memory_gb, else the largest "
+              "tiles that fit; >= 0");
   s.AddDouble("tiling.halo_m", &t.halo_m, "halo around each tile core, metres; >= 0");
   s.AddInt("tiling.window_margin_px", &t.window_margin_px, "padding of each view's depth window, depth pixels");
   s.AddDouble("tiling.z_min_m", &t.z_min_m,

@@ -185,6 +185,28 @@ Raster<float> ReadColmapArrayRows(const std::string& path, int row_begin, int ro
   return out;
 }
 
+Raster<float> ReadColmapArrayWindow(const std::string& path, const PixelWindow& window) {
+  const ColmapArrayShape shape = ReadColmapArrayShape(path);
+  if (!window.FitsIn(shape.width, shape.height)) {
+    throw Error(path + ": window " + PixelWindowText(window) + " is not inside the array's " +
+                std::to_string(shape.width) + "x" + std::to_string(shape.height) + " pixels");
+  }
+  Raster<float> out(window.width(), window.height(), shape.channels);
+  std::ifstream in = OpenForReading(path);
+  const uint64_t plane_floats = static_cast<uint64_t>(shape.width) * shape.height;
+  std::vector<float> row(static_cast<size_t>(window.width()));
+  for (int c = 0; c < shape.channels; ++c) {
+    for (int r = 0; r < window.height(); ++r) {
+      const uint64_t offset =
+          shape.data_offset + (c * plane_floats + static_cast<uint64_t>(window.row_begin + r) * shape.width +
+                               static_cast<uint64_t>(window.col_begin)) * sizeof(float);
+      ReadExactly(in, path, reinterpret_cast<char*>(row.data()), row.size() * sizeof(float), offset);
+      ScatterPlane(row, c, r, 1, &out);
+    }
+  }
+  return out;
+}
+
 void WriteColmapArray(const std::string& path, const Raster<float>& raster) {
   if (raster.width <= 0 || raster.height <= 0 || raster.channels <= 0) {
     throw Error(path + ": cannot write an empty dense array (" + std::to_string(raster.width) + "x" +

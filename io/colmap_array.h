@@ -4,6 +4,7 @@
 // use sacfuse::Raster (channel-interleaved); the conversion happens here.
 #include <string>
 
+#include "core/pixel_window.h"
 #include "core/raster.h"
 
 namespace sacfuse {
@@ -21,6 +22,9 @@ ColmapArrayShape ReadColmapArrayShape(const std::string& path);
 Raster<float> ReadColmapArray(const std::string& path);
 // Rows [row_begin, row_end) of every channel; used by tiles that need a window.
 Raster<float> ReadColmapArrayRows(const std::string& path, int row_begin, int row_end);
+// The pixels of `window`, every channel (one seek + read per row and channel, so a narrow window of a wide map
+// reads only its columns). Throws InputError for a bad file, Error for a window outside the array.
+Raster<float> ReadColmapArrayWindow(const std::string& path, const PixelWindow& window);
 // Writes atomically (temporary name, fsync, rename).
 void WriteColmapArray(const std::string& path, const Raster<float>& raster);
 

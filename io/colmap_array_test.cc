@@ -141,6 +141,33 @@ TEST(ColmapArrayTest, RoundTripAndRowsEqualSliceOfFullRead) {
   }
 }
 
+TEST(ColmapArrayTest, WindowsEqualTheCropOfTheFullRead) {
+  TempDir tmp;
+  for (const int channels : {1, 3}) {
+    const Raster<float> written = RandomRaster(9, 7, channels);
+    const std::string path = (tmp / ("w" + std::to_string(channels) + ".bin")).string();
+    WriteColmapArray(path, written);
+    for (const PixelWindow& w : {PixelWindow{0, 7, 0, 9}, PixelWindow{2, 5, 3, 4}, PixelWindow{6, 7, 8, 9},
+                                 PixelWindow{1, 6, 0, 5}}) {
+      SCOPED_TRACE(PixelWindowText(w));
+      const Raster<float> win = ReadColmapArrayWindow(path, w);
+      ASSERT_EQ(win.width, w.width());
+      ASSERT_EQ(win.height, w.height());
+      ASSERT_EQ(win.channels, channels);
+      for (int r = 0; r < w.height(); ++r) {
+        for (int col = 0; col < w.width(); ++col) {
+          for (int c = 0; c < channels; ++c) {
+            ASSERT_EQ(win.at(r, col, c), written.at(w.row_begin + r, w.col_begin + col, c));
+          }
+        }
+      }
+    }
+    EXPECT_THROW(ReadColmapArrayWindow(path, PixelWindow{0, 8, 0, 9}), Error);
+    EXPECT_THROW(ReadColmapArrayWindow(path, PixelWindow{0, 7, 5, 10}), Error);
+    EXPECT_THROW(ReadColmapArrayWindow(path, PixelWindow{3, 3, 0, 9}), Error);
+  }
+}
+
 TEST(ColmapArrayTest, TruncatedFile) {
   TempDir tmp;
   const std::string path = WriteBytes(tmp, "t.bin", "3&2&1&" + FloatBytes({1, 2, 3, 4, 5}).substr(0, 18));

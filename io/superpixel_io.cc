@@ -277,4 +277,37 @@ SuperpixelMap ReadSuperpixelRows(const std::string& path, int row_begin, int row
   return map;
 }
 
+std::vector<int32_t> ReadSuperpixelLabelWindow(const std::string& path, const PixelWindow& window,
+                                               SuperpixelFileInfo* info) {
+  const OpenFile open = Open(path);
+  if (!window.FitsIn(open.info.width, open.info.height)) {
+    throw Error(path + ": window " + PixelWindowText(window) + " is not inside the raster's " +
+                std::to_string(open.info.width) + "x" + std::to_string(open.info.height) + " pixels");
+  }
+  if (info != nullptr) *info = open.info;
+  const uint64_t width = static_cast<uint64_t>(open.info.width);
+  const size_t row_values = static_cast<size_t>(window.width());
+  std::vector<int32_t> labels(window.num_pixels());
+  for (int r = 0; r < window.height(); ++r) {
+    const uint64_t offset = kHeaderBytes + ((static_cast<uint64_t>(window.row_begin) + r) * width + window.col_begin) * 4;
+    ReadExactly(open.file.get(), path, offset, labels.data() + r * row_values, row_values * 4, "the label rows");
+  }
+  SwapLabelsIfBigEndian(labels.data(), labels.size());
+  const auto n = static_cast<int64_t>(open.info.num_clusters);
+  for (size_t i = 0; i < labels.size(); ++i) {
+    if (labels[i] < 0 || labels[i] >= n) {
+      throw InputError(path, "label " + std::to_string(labels[i]) + " at row " +
+                                 std::to_string(window.row_begin + static_cast<int64_t>(i / row_values)) + ", col " +
+                                 std::to_string(window.col_begin + static_cast<int64_t>(i % row_values)) +
+                                 " is outside [0, " + std::to_string(n) + ")");
+    }
+  }
+  return labels;
+}
+
+std::vector<SuperpixelCluster> ReadSuperpixelClusters(const std::string& path) {
+  const OpenFile open = Open(path);
+  return ReadClusterTable(open, path);
+}
+
 }  // namespace sacfuse

@@ -9,7 +9,9 @@
 // the map: compare it before reusing a file.
 #include <cstdint>
 #include <string>
+#include <vector>
 
+#include "core/pixel_window.h"
 #include "core/superpixels.h"
 
 namespace sacfuse {
@@ -33,5 +35,14 @@ SuperpixelMap ReadSuperpixels(const std::string& path);
 // row row_begin + r) plus the whole cluster table (centroids stay in full-image coordinates). Labels read are
 // range-checked. Throws InputError for a bad file, Error for a bad row range.
 SuperpixelMap ReadSuperpixelRows(const std::string& path, int row_begin, int row_end);
+
+// The labels of `window` (row-major, window.width() per row; each row one seek + read), range-checked against the
+// file's cluster count, which *info receives. Throws InputError for a bad file, Error for a window outside it.
+std::vector<int32_t> ReadSuperpixelLabelWindow(const std::string& path, const PixelWindow& window,
+                                               SuperpixelFileInfo* info = nullptr);
+
+// The whole cluster table (validated as in ReadSuperpixels except the sum of pixel counts, which needs the labels
+// only in part: it is checked against the raster size). Throws InputError naming the file.
+std::vector<SuperpixelCluster> ReadSuperpixelClusters(const std::string& path);
 
 }  // namespace sacfuse

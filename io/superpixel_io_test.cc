@@ -118,6 +118,35 @@ TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "sub"), std::filesystem::directory_iterator()), 1);
 }
 
+TEST(SuperpixelIoTest, LabelWindowsAreTheCropOfTheFullMap) {
+  testing::TempDir dir;
+  const std::string path = (dir / "w.spx").string();
+  const SuperpixelMap map = MakeMap(37, 29);
+  WriteSuperpixels(path, map, 5);
+  ExpectClustersEqual(ReadSuperpixelClusters(path), map.clusters);
+  for (const PixelWindow& w : {PixelWindow{0, 29, 0, 37}, PixelWindow{3, 17, 5, 6}, PixelWindow{28, 29, 30, 37},
+                               PixelWindow{10, 20, 0, 12}}) {
+    SCOPED_TRACE(PixelWindowText(w));
+    SuperpixelFileInfo info;
+    const std::vector<int32_t> labels = ReadSuperpixelLabelWindow(path, w, &info);
+    EXPECT_EQ(info.width, 37);
+    EXPECT_EQ(info.num_clusters, map.clusters.size());
+    ASSERT_EQ(labels.size(), w.num_pixels());
+    for (int r = 0; r < w.height(); ++r) {
+      for (int c = 0; c < w.width(); ++c) {
+        EXPECT_EQ(labels[r * w.width() + c], map.label(w.row_begin + r, w.col_begin + c));
+      }
+    }
+  }
+  EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{0, 30, 0, 5}), Error);
+  EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{0, 5, 30, 38}), Error);
+  EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{4, 4, 0, 5}), Error);
+  // The partial readers check what they read; a truncated file fails the header's size check for both.
+  std::filesystem::resize_file(path, std::filesystem::file_size(path) - 3);
+  EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{0, 1, 0, 1}), InputError);
+  EXPECT_THROW(ReadSuperpixelClusters(path), InputError);
+}
+
 TEST(SuperpixelIoTest, OnDiskLayoutIsLittleEndian) {
   testing::TempDir dir;
   const std::string path = (dir / "a.spx").string();

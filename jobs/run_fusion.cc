@@ -12,7 +12,10 @@
 #include "io/atomic_file.h"
 #include "io/colmap_workspace.h"
 #include "io/las_writer.h"
+#include "jobs/auto_tiling.h"
+#include "jobs/memory_model.h"
 #include "jobs/resource_usage.h"
+#include "jobs/thread_limit.h"
 #include "jobs/sac_block.h"
 #include "jobs/tiled_run.h"
 #include "jobs/version.h"
@@ -53,6 +56,12 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                             {"wall_seconds", s.wall_seconds},
                             {"cpu_seconds", s.cpu_seconds},
                             {"peak_rss_mib", s.peak_rss_mib},
+                            {"threads", s.threads},
+                            {"memory", {{"budget_gib", s.memory_budget_gib}, {"estimate_gib", s.memory_estimate_gib}}},
+                            {"tiling_decision", {{"tile_size_m", s.tile_size_m}, {"reason", s.tiling_reason}}},
+                            {"stage_wall_seconds",
+                             {{"superpixels", s.superpixel_seconds}, {"tiles", s.tiles_seconds},
+                              {"merge", s.merge_seconds}}},
                             {"views", views}};
   if (s.has_sac_stats) {
     nlohmann::json stages = nlohmann::json::object();
@@ -85,7 +94,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
 
 void CheckRerunTiles(const std::vector<std::string>& rerun_tiles, const TilePlan* plan) {
   if (rerun_tiles.empty()) return;
-  if (!plan) throw ConfigError("--tiles: only tiled runs (tiling.tile_size_m > 0, fusion.method sac) have tiles");
+  if (!plan) throw ConfigError("--tiles: only tiled runs have tiles (fusion.method sac, and tiling.tile_size_m > 0 or a block too big for the memory budget)");
   const std::vector<std::string> known = TileIdsWithViews(*plan);
   std::string unknown;
   for (const auto& id : rerun_tiles) {
@@ -107,6 +116,7 @@ void SetSacSummary(const SacBlockResult& sac, RunSummary* summary) {
   summary->has_sac_stats = true;
   summary->sac = sac.stats;
   summary->superpixels_computed = sac.superpixels_computed;
+  summary->superpixel_seconds = sac.superpixel_seconds;
   summary->input_points = sac.stats.collapse.input_pixels;
   LogSacStats(sac.stats);
 }
@@ -132,6 +142,8 @@ void RunTiled(const JobConfig& config, const ColmapWorkspace& workspace, const R
   summary->tiles_computed = tiled.tiles_computed;
   summary->tiles_skipped = tiled.tiles_skipped;
   summary->failed_tiles = tiled.failed;
+  summary->tiles_seconds = tiled.tiles_seconds;
+  summary->merge_seconds = tiled.merge_seconds;
   summary->output_points = tiled.merged_points;
   for (auto& v : summary->views) {
     const size_t i = &v - summary->views.data();
@@ -180,9 +192,10 @@ std::string FusedLasPath(const JobConfig& config) {
   return (std::filesystem::path(config.output.dir) / "fused.las").string();
 }
 
-RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress,
+RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
                         const std::vector<std::string>& rerun_tiles) {
-  ValidateJobConfig(config);
+  ValidateJobConfig(given);
+  JobConfig config = given;
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ProcessCpuSeconds();
   std::filesystem::create_directories(config.output.dir);
@@ -192,8 +205,6 @@ RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress,
   summary.las_path = FusedLasPath(config);
   summary.effective_config_path = (std::filesystem::path(config.output.dir) / "sacfuse.effective.yaml").string();
   summary.report_path = (std::filesystem::path(config.output.dir) / "run_report.json").string();
-  const bool tiled = config.fusion.method == "sac" && config.tiling.tile_size_m > 0;
-  if (!tiled) CheckRerunTiles(rerun_tiles, nullptr);
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
   const ColmapWorkspace workspace(config.input.path, config.input.depth_type == "photometric"
@@ -201,6 +212,20 @@ RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress,
                                                          : ColmapDepthType::kGeometric);
   const auto& views = workspace.views();
   if (views.empty()) throw InputError(config.input.path, "the workspace has no images to fuse");
+  TilingDecision decision;
+  config = ResolveTiling(given, workspace, &decision);
+  const ThreadLimit thread_limit(EffectiveThreads(config));
+  summary.threads = EffectiveThreads(config);
+  summary.tile_size_m = config.tiling.tile_size_m;
+  summary.tiling_reason = decision.reason;
+  summary.memory_budget_gib = config.resources.memory_gb;
+  summary.memory_estimate_gib =
+      static_cast<double>(decision.tiled ? decision.max_tile_bytes : decision.untiled_bytes) / kGiB;
+  const bool tiled = config.fusion.method == "sac" && config.tiling.tile_size_m > 0;
+  if (!tiled) CheckRerunTiles(rerun_tiles, nullptr);
+  if (given.tiling.tile_size_m != config.tiling.tile_size_m) {
+    WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));  // with the size chosen
+  }
   spdlog::info("input: {} views from {}", views.size(), config.input.path);
   summary.views.resize(views.size());
   for (size_t i = 0; i < views.size(); ++i) summary.views[i].name = views[i].name;

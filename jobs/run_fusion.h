@@ -36,6 +36,14 @@ struct RunSummary {
   size_t tiles_computed = 0;  // tiled: computed by this invocation (the rest were verified done and skipped)
   size_t tiles_skipped = 0;
   std::vector<std::pair<std::string, std::string>> failed_tiles;  // tiled: id, reason; then no fused.las
+  double tile_size_m = 0.0;        // as run (resolved when tiling.tile_size_m was 0 = automatic)
+  std::string tiling_reason;       // why untiled / this tile size
+  double memory_budget_gib = 0.0;  // resources.memory_gb
+  double memory_estimate_gib = 0.0;  // untiled: the whole block; tiled: the largest tile
+  int threads = 0;
+  double superpixel_seconds = 0.0;  // SAC: the superpixel (and colour cache) pass
+  double tiles_seconds = 0.0;       // tiled: the tile stage
+  double merge_seconds = 0.0;       // tiled: merging the tiles into fused.las
 };
 
 // Called as work proceeds: stage name, units done, units total.

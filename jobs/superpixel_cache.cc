@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "core/error.h"
+#include "io/colour_raster_io.h"
 #include "io/superpixel_io.h"
 
 namespace sacfuse {
@@ -39,6 +40,22 @@ SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const std::
   WriteSuperpixels(path, map, SuperpixelOptionsHash(options));
   if (computed != nullptr) *computed = true;
   return map;
+}
+
+std::string ColourCachePath(const std::string& cache_dir, const std::string& image_name) {
+  return (std::filesystem::path(cache_dir) / (image_name + ".rgb")).string();
+}
+
+bool ColourCacheIsCurrent(const std::string& cache_dir, const std::string& image_name, int width, int height) {
+  const std::string path = ColourCachePath(cache_dir, image_name);
+  if (!std::filesystem::exists(path)) return false;
+  try {
+    const ColourRasterInfo info = ReadColourRasterInfo(path);
+    return info.width == width && info.height == height;
+  } catch (const Error& e) {
+    spdlog::warn("ignoring unreadable colour cache {}: {}", path, e.what());
+    return false;
+  }
 }
 
 }  // namespace sacfuse

@@ -20,4 +20,11 @@ SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const std::
                                        const RgbImage& image, const DepthMap& depth,
                                        const SuperpixelOptions& options, bool* computed = nullptr);
 
+// Colour cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.rgb"): the image resampled to
+// the depth raster (io/colour_raster_io.h), written by the superpixel pass so tiles read colour windows.
+std::string ColourCachePath(const std::string& cache_dir, const std::string& image_name);
+
+// Whether a readable colour cache of width x height exists for this image.
+bool ColourCacheIsCurrent(const std::string& cache_dir, const std::string& image_name, int width, int height);
+
 }  // namespace sacfuse

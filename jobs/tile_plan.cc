@@ -12,6 +12,8 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/colmap_array.h"
+#include "jobs/auto_tiling.h"
+#include "jobs/memory_model.h"
 #include "jobs/version.h"
 
 namespace sacfuse {
@@ -84,7 +86,7 @@ TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& op
       tile.views.push_back({static_cast<uint32_t>(v), *window});
       tile.window_pixels += window->num_pixels();
     }
-    tile.memory_bytes = tile.window_pixels * kTileBytesPerWindowPixel;
+    tile.memory_bytes = TileBytes(tile.window_pixels);
     plan.tiles.push_back(std::move(tile));
   }
   return plan;
@@ -158,10 +160,11 @@ TilePlan SharedTilePlan(const JobConfig& config, const ColmapWorkspace& workspac
   return plan;
 }
 
-TilePlan PlanJob(const JobConfig& config, std::string* plan_path) {
-  ValidateJobConfig(config);
-  const ColmapWorkspace workspace(config.input.path, DepthType(config));
-  if (workspace.views().empty()) throw InputError(config.input.path, "the workspace has no images to plan");
+TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
+  ValidateJobConfig(given);
+  const ColmapWorkspace workspace(given.input.path, DepthType(given));
+  if (workspace.views().empty()) throw InputError(given.input.path, "the workspace has no images to plan");
+  const JobConfig config = ResolveTiling(given, workspace);
   return SharedTilePlan(config, workspace, plan_path);
 }
 

@@ -13,11 +13,6 @@
 
 namespace sacfuse {
 
-// Bytes a tile holds per depth-window pixel of one view: float32 depth (4) + int32 superpixel label (4) + RGB
-// colour resampled to the depth grid (3). SAC's per-node working memory and the transient full-image read are
-// not included (yet).
-constexpr uint64_t kTileBytesPerWindowPixel = 4 + 4 + 3;
-
 // Padding of the sparse points' 2nd..98th percentile height range, metres.
 constexpr double kSparseHeightPaddingM = 10.0;
 
@@ -32,7 +27,7 @@ struct PlannedTile {
   Bounds2d core, halo;                 // core is half-open [min, max)
   std::vector<TileViewWindow> views;   // in view order
   uint64_t window_pixels = 0;          // sum over views
-  uint64_t memory_bytes = 0;           // window_pixels x kTileBytesPerWindowPixel
+  uint64_t memory_bytes = 0;           // estimate, TileBytes(window_pixels) (jobs/memory_model.h)
 };
 
 struct DepthRasterSize {
@@ -66,7 +61,8 @@ std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace,
 // writers produce the same content). *plan_path receives the file.
 TilePlan SharedTilePlan(const JobConfig& config, const ColmapWorkspace& workspace, std::string* plan_path = nullptr);
 
-// `sacfuse plan`: validates the config, opens the workspace and returns SharedTilePlan.
+// `sacfuse plan`: validates the config, opens the workspace, resolves an automatic tile size (a block that runs
+// untiled gets the one-tile plan) and returns SharedTilePlan.
 TilePlan PlanJob(const JobConfig& config, std::string* plan_path = nullptr);
 
 }  // namespace sacfuse

@@ -7,7 +7,9 @@
 #include "config/result_settings.h"
 #include "core/error.h"
 #include "io/colmap_workspace.h"
+#include "jobs/auto_tiling.h"
 #include "jobs/run_fusion.h"
+#include "jobs/thread_limit.h"
 #include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
 #include "jobs/tiled_run.h"
@@ -17,15 +19,19 @@ namespace sacfuse {
 namespace fs = std::filesystem;
 namespace {
 
-ColmapWorkspace OpenTiledWorkspace(const JobConfig& config) {
+// Opens the workspace and resolves an automatic tile size into *resolved; throws ConfigError for untiled jobs.
+ColmapWorkspace OpenTiledWorkspace(const JobConfig& config, JobConfig* resolved) {
   ValidateJobConfig(config);
-  if (config.fusion.method != "sac" || config.tiling.tile_size_m <= 0) {
-    throw ConfigError("not a tiled run: tiles need fusion.method sac and tiling.tile_size_m > 0");
-  }
+  if (config.fusion.method != "sac") throw ConfigError("not a tiled run: tiles need fusion.method sac");
   ColmapWorkspace workspace(config.input.path, config.input.depth_type == "photometric"
                                                    ? ColmapDepthType::kPhotometric
                                                    : ColmapDepthType::kGeometric);
   if (workspace.views().empty()) throw InputError(config.input.path, "the workspace has no images to fuse");
+  *resolved = ResolveTiling(config, workspace);
+  if (resolved->tiling.tile_size_m <= 0) {
+    throw ConfigError("not a tiled run: tiling.tile_size_m = 0 and the whole block fits in resources.memory_gb, so "
+                      "it runs untiled (`sacfuse run`); set tiling.tile_size_m > 0 to cut it into tiles");
+  }
   return workspace;
 }
 
@@ -37,8 +43,10 @@ LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
 
 }  // namespace
 
-TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id) {
-  const ColmapWorkspace workspace = OpenTiledWorkspace(config);
+TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
+  JobConfig config;
+  const ColmapWorkspace workspace = OpenTiledWorkspace(given, &config);
+  const ThreadLimit thread_limit(EffectiveThreads(config));
   const TilePlan plan = SharedTilePlan(config, workspace);
   const PlannedTile* tile = nullptr;
   for (const PlannedTile& t : plan.tiles) {
@@ -67,6 +75,7 @@ TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id) {
   fs::remove(FusedLasPath(config), ec);  // stale until the tiles are merged again
   try {
     EnsureTiledSuperpixels(workspace, plan, config.fusion.sac, TileCacheDir(config), {}, tile);
+    CheckTileFitsBudget(*tile, config);
     const TileFusionResult r = ComputeTileFiles(config, workspace, plan, *tile, las, tiles_dir, hash);
     out.result = TileWork::kComputed;
     out.points = r.points_in_core;
@@ -107,8 +116,9 @@ MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const L
   return merged;
 }
 
-MergeJobOutcome MergeJob(const JobConfig& config) {
-  const ColmapWorkspace workspace = OpenTiledWorkspace(config);
+MergeJobOutcome MergeJob(const JobConfig& given) {
+  JobConfig config;
+  const ColmapWorkspace workspace = OpenTiledWorkspace(given, &config);
   const TilePlan plan = SharedTilePlan(config, workspace);
   MergeJobOutcome out;
   out.fused_las_path = FusedLasPath(config);

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <atomic>
+#include <mutex>
 #include <set>
 #include <sstream>
 #include <thread>
@@ -17,6 +19,9 @@
 #include "config/result_settings.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "jobs/auto_tiling.h"
+#include "jobs/memory_admission.h"
+#include "jobs/memory_model.h"
 #include "jobs/resource_usage.h"
 #include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
@@ -85,7 +90,7 @@ void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const La
 
 TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
                                   const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
-                                  const std::string& hash) {
+                                  const std::string& hash, ClusterTableCache* cluster_cache) {
   spdlog::info("computing tile {} (pid {})", tile.id, static_cast<long>(::getpid()));
   ClearTileState(tiles_dir, tile.id);
   const auto start = std::chrono::steady_clock::now();
@@ -93,7 +98,7 @@ TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace
   bool has_las = false;
   {
     LasWriter writer(TileLasPath(tiles_dir, tile.id), las);
-    fused = FuseTile(workspace, plan, tile, config.fusion.sac, TileCacheDir(config), writer);
+    fused = FuseTile(workspace, plan, tile, config.fusion.sac, TileCacheDir(config), writer, cluster_cache);
     if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
       writer.Close();
       has_las = true;
@@ -106,6 +111,16 @@ TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace
   marker.peak_rss_mib = PeakRssMiB();
   WriteTileDoneMarker(tiles_dir, marker);
   return fused;
+}
+
+void CheckTileFitsBudget(const PlannedTile& tile, const JobConfig& config) {
+  const uint64_t pool = TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb));
+  if (tile.memory_bytes <= pool) return;
+  throw Error(fmt::format("tile {}: out-of-memory guard: its {} views' windows need ~{:.2f} GiB, more than the "
+                          "{:.2f} GiB that resources.memory_gb = {} leaves for tiles; use a smaller "
+                          "tiling.tile_size_m (or 0 = sized from the budget) or raise resources.memory_gb",
+                          tile.id, tile.views.size(), static_cast<double>(tile.memory_bytes) / kGiB,
+                          static_cast<double>(pool) / kGiB, config.resources.memory_gb));
 }
 
 std::string TilesDir(const JobConfig& config) { return (fs::path(config.output.dir) / "tiles").string(); }
@@ -180,6 +195,9 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
   }
   SacStats& total = out.block.stats;
   total.emitted_per_view.assign(workspace.views().size(), 0);
+  ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
+  MemoryAdmission admission(TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb)));
+  std::mutex mutex;  // guards out, total and progress across tile workers
   // Claims and computes one tile; false when another live worker holds it.
   const auto attempt = [&](const PlannedTile& tile, bool forced, size_t n, size_t of) {
     const ClaimAttempt claim = TryClaimTile(tiles_dir, tile.id, claim_timeout_s);
@@ -193,9 +211,18 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
       spdlog::info("tile {}: done by another worker", tile.id);
       return true;
     }
-    ++out.tiles_computed;
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      ++out.tiles_computed;
+    }
     try {
-      const TileFusionResult r = ComputeTileFiles(config, workspace, plan, tile, las_options, tiles_dir, hash);
+      CheckTileFitsBudget(tile, config);
+      TileFusionResult r;
+      {
+        MemoryReservation reservation(admission, tile.memory_bytes);
+        r = ComputeTileFiles(config, workspace, plan, tile, las_options, tiles_dir, hash, &cluster_cache);
+      }
+      std::lock_guard<std::mutex> lock(mutex);
       AddSacStats(r.stats, &total);
       for (size_t v = 0; v < tile.views.size(); ++v)
         total.emitted_per_view[tile.views[v].view] += r.stats.emitted_per_view[v];
@@ -204,15 +231,43 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
     } catch (const std::exception& e) {
       spdlog::error("tile {}: failed: {}", tile.id, e.what());
       WriteTileFailedMarker(tiles_dir, tile.id, e.what());
+      std::lock_guard<std::mutex> lock(mutex);
       out.failed.emplace_back(tile.id, e.what());
     }
     return true;
   };
   std::vector<const PlannedTile*> held;  // by other live workers
-  for (size_t i = 0; i < todo.size(); ++i) {
-    if (!attempt(*todo[i], rerun.count(todo[i]->id) > 0, i + 1, todo.size())) held.push_back(todo[i]);
-    if (progress) progress("tiles", i + 1, todo.size());
-  }
+  const size_t workers = std::min<size_t>(static_cast<size_t>(EffectiveThreads(config)), todo.size());
+  if (workers > 1) spdlog::info("{} tiles on {} worker threads within {:.2f} GiB for tiles", todo.size(), workers,
+                                static_cast<double>(admission.pool()) / kGiB);
+  std::atomic<size_t> next{0};
+  size_t finished = 0;
+  std::exception_ptr worker_error;  // claim I/O errors end the run after the workers stop
+  const auto work = [&] {
+    try {
+      for (size_t i = next++; i < todo.size(); i = next++) {
+        const bool computed_or_done = attempt(*todo[i], rerun.count(todo[i]->id) > 0, i + 1, todo.size());
+        std::lock_guard<std::mutex> lock(mutex);
+        if (!computed_or_done) held.push_back(todo[i]);
+        ++finished;
+        if (progress) progress("tiles", finished, todo.size());
+      }
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (!worker_error) worker_error = std::current_exception();
+      next = todo.size();  // the other workers stop after their current tile
+    }
+  };
+  const auto tiles_start = std::chrono::steady_clock::now();
+  std::vector<std::thread> threads;
+  for (size_t w = 1; w < workers; ++w) threads.emplace_back(work);
+  work();
+  for (std::thread& t : threads) t.join();
+  if (worker_error) std::rethrow_exception(worker_error);
+  out.tiles_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - tiles_start).count();
+  // Failures and held tiles in id order whatever the thread timing.
+  std::sort(out.failed.begin(), out.failed.end());
+  std::sort(held.begin(), held.end(), [](const PlannedTile* a, const PlannedTile* b) { return a->id < b->id; });
   if (!held.empty()) {
     std::string ids;
     for (const PlannedTile* t : held) ids += (ids.empty() ? "" : ",") + t->id;
@@ -231,7 +286,9 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
   if (total.valid_nodes > 0) total.mean_correspondences /= static_cast<double>(total.valid_nodes);
   if (!out.failed.empty()) return out;
 
+  const auto merge_start = std::chrono::steady_clock::now();
   const MergeResult merged = MergeTiledRun(config, plan, las_options, fused_las_path, progress);
+  out.merge_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - merge_start).count();
   out.merged = true;
   out.merged_points = merged.points;
   out.points_per_view = merged.points_per_view;

@@ -8,6 +8,8 @@
 // Several workers (`sacfuse run` and `sacfuse tile` processes, on this or other machines sharing DIR) may work on
 // one job: a tile is computed only under its claim (jobs/tile_claim.h); a run leaves tiles another live worker
 // holds to it and waits for them (polling every second) before merging.
+// Tiles run in parallel on up to resources.threads worker threads, each admitted only when its memory estimate
+// fits next to the tiles already running (jobs/memory_admission.h); results do not depend on the thread count.
 // A run deletes leftover "*.tmp-*" files (only when no live claim exists), skips tiles whose done marker verifies, computes the rest (a tile that
 // throws gets a failed marker; the others go on), and, when every tile with views is done, merges the tile
 // files in grid order into DIR/fused.las.
@@ -34,6 +36,8 @@ struct TiledRunOutcome {
   bool merged = false;                                      // DIR/fused.las written
   uint64_t merged_points = 0;
   std::vector<uint64_t> points_per_view;  // of the merged cloud, by view index
+  double tiles_seconds = 0.0;             // wall time of the tile stage (all workers)
+  double merge_seconds = 0.0;
 };
 
 std::string TilesDir(const JobConfig& config);
@@ -52,7 +56,11 @@ void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const La
 // logs "computing tile <id>". Needs the superpixel caches of the tile's views. Throws whatever the tile throws.
 TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
                                   const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
-                                  const std::string& hash);
+                                  const std::string& hash, ClusterTableCache* cluster_cache = nullptr);
+
+// Refuses a tile whose memory estimate exceeds what the budget leaves for tiles (the out-of-memory guard):
+// throws Error naming the tile, the estimate and the keys to change.
+void CheckTileFitsBudget(const PlannedTile& tile, const JobConfig& config);
 
 // `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done.
 TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,

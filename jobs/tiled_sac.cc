@@ -6,33 +6,52 @@
 
 
 #include "core/error.h"
+#include "core/colour_resample.h"
 #include "io/colmap_array.h"
+#include "io/colour_raster_io.h"
 #include "io/superpixel_io.h"
 #include "jobs/superpixel_cache.h"
 
 namespace sacfuse {
 namespace {
 
-// Computes and caches a view's superpixels unless a matching cache file exists (then nothing is read).
-bool EnsureSuperpixels(const ColmapWorkspace& workspace, const View& view, const DepthRasterSize& size,
-                       const SuperpixelOptions& options, const std::string& cache_dir) {
-  if (SuperpixelCacheIsCurrent(cache_dir, view.name, size.width, size.height, options)) return false;
+// Computes and caches a view's superpixels and its colours on the depth grid unless both caches exist (then
+// nothing is read).
+bool EnsureViewCaches(const ColmapWorkspace& workspace, const View& view, const DepthRasterSize& size,
+                      const SuperpixelOptions& options, const std::string& cache_dir) {
+  const bool spx_ok = SuperpixelCacheIsCurrent(cache_dir, view.name, size.width, size.height, options);
+  const bool rgb_ok = ColourCacheIsCurrent(cache_dir, view.name, size.width, size.height);
+  if (spx_ok && rgb_ok) return false;
   const DepthMap depth = workspace.ReadDepthMap(view);
   const RgbImage image = workspace.ReadImage(view);
   bool computed = false;
-  LoadOrComputeSuperpixels(cache_dir, view.name, image, depth, options, &computed);
+  if (!spx_ok) LoadOrComputeSuperpixels(cache_dir, view.name, image, depth, options, &computed);
+  if (!rgb_ok && !image.empty()) {
+    WriteColourRaster(ColourCachePath(cache_dir, view.name), ResampleColourToDepthGrid(image, size.width, size.height));
+  }
   return computed;
 }
 
-// Columns [col_begin, col_end) of a raster holding whole rows.
-template <typename T>
-Raster<T> CropColumns(const Raster<T>& rows, int col_begin, int col_end) {
-  Raster<T> out(col_end - col_begin, rows.height, rows.channels);
-  const size_t row_values = static_cast<size_t>(out.width) * rows.channels;
-  for (int r = 0; r < rows.height; ++r) {
-    const T* src = rows.data.data() + (static_cast<size_t>(r) * rows.width + col_begin) * rows.channels;
-    std::copy(src, src + row_values, out.data.data() + static_cast<size_t>(r) * row_values);
+// The superpixels of a window: the clusters its labels use, renumbered 0.. in ascending order of their index in
+// the view (so nodes keep the untiled order), with centroids in window coordinates. Cluster statistics are the
+// whole view's, so a cluster whose centroid lies in the window becomes the same node as in an untiled run.
+SuperpixelMap WindowSuperpixels(std::vector<int32_t> labels, const std::vector<SuperpixelCluster>& view_clusters,
+                                const PixelWindow& w) {
+  std::vector<int32_t> local(view_clusters.size(), -1);
+  for (const int32_t l : labels) local[static_cast<size_t>(l)] = 0;
+  SuperpixelMap out;
+  out.width = w.width();
+  out.height = w.height();
+  for (size_t c = 0; c < local.size(); ++c) {
+    if (local[c] < 0) continue;
+    local[c] = static_cast<int32_t>(out.clusters.size());
+    SuperpixelCluster cluster = view_clusters[c];
+    cluster.centroid_col -= static_cast<float>(w.col_begin);
+    cluster.centroid_row -= static_cast<float>(w.row_begin);
+    out.clusters.push_back(cluster);
   }
+  for (int32_t& l : labels) l = local[static_cast<size_t>(l)];
+  out.labels = std::move(labels);
   return out;
 }
 
@@ -40,42 +59,25 @@ Raster<T> CropColumns(const Raster<T>& rows, int col_begin, int col_end) {
 struct WindowRasters {
   DepthMap depth;
   SuperpixelMap superpixels;
-  RgbImage image;  // at depth-window resolution
+  RgbImage image;  // at depth-window resolution; empty = no colours
 };
 
 WindowRasters LoadWindow(const ColmapWorkspace& workspace, const View& view, const DepthRasterSize& size,
-                         const PixelWindow& w, const std::string& cache_dir) {
+                         const PixelWindow& w, const std::string& cache_dir, ClusterTableCache* cluster_cache) {
   WindowRasters out;
-  out.depth = CropColumns(ReadColmapArrayRows(workspace.DepthMapPath(view), w.row_begin, w.row_end), w.col_begin,
-                          w.col_end);
-  const SuperpixelMap rows = ReadSuperpixelRows(SuperpixelCachePath(cache_dir, view.name), w.row_begin, w.row_end);
-  if (rows.width != size.width) {
-    throw InputError(SuperpixelCachePath(cache_dir, view.name), "superpixel raster is not the depth map's size");
+  out.depth = ReadColmapArrayWindow(workspace.DepthMapPath(view), w);
+  const std::string spx_path = SuperpixelCachePath(cache_dir, view.name);
+  SuperpixelFileInfo info;
+  std::vector<int32_t> labels = ReadSuperpixelLabelWindow(spx_path, w, &info);
+  if (info.width != size.width || info.height != size.height) {
+    throw InputError(spx_path, "superpixel raster is not the depth map's size");
   }
-  out.superpixels.width = w.width();
-  out.superpixels.height = w.height();
-  out.superpixels.labels.resize(w.num_pixels());
-  for (int r = 0; r < w.height(); ++r) {
-    std::copy_n(rows.labels.begin() + static_cast<size_t>(r) * rows.width + w.col_begin, w.width(),
-                out.superpixels.labels.begin() + static_cast<size_t>(r) * w.width());
-  }
-  out.superpixels.clusters = rows.clusters;  // same indices; centroids into window coordinates
-  for (SuperpixelCluster& c : out.superpixels.clusters) {
-    c.centroid_col -= static_cast<float>(w.col_begin);
-    c.centroid_row -= static_cast<float>(w.row_begin);
-  }
-  // Colour at depth resolution, sampled exactly as core's untiled colour lookup samples the full image.
-  const RgbImage full = workspace.ReadImage(view);
-  if (!full.empty()) {
-    out.image = RgbImage(w.width(), w.height(), full.channels);
-    for (int r = 0; r < w.height(); ++r) {
-      const int ir = std::min(full.height - 1, static_cast<int>((r + w.row_begin + 0.5) * full.height / size.height));
-      for (int c = 0; c < w.width(); ++c) {
-        const int ic = std::min(full.width - 1, static_cast<int>((c + w.col_begin + 0.5) * full.width / size.width));
-        for (int ch = 0; ch < full.channels; ++ch) out.image.at(r, c, ch) = full.at(ir, ic, ch);
-      }
-    }
-  }
+  std::shared_ptr<const std::vector<SuperpixelCluster>> clusters =
+      cluster_cache != nullptr ? cluster_cache->Get(spx_path)
+                               : std::make_shared<const std::vector<SuperpixelCluster>>(ReadSuperpixelClusters(spx_path));
+  out.superpixels = WindowSuperpixels(std::move(labels), *clusters, w);
+  const std::string rgb_path = ColourCachePath(cache_dir, view.name);
+  if (std::filesystem::exists(rgb_path)) out.image = ReadColourRasterWindow(rgb_path, w);
   return out;
 }
 
@@ -146,15 +148,16 @@ size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& 
   size_t computed = 0;
   for (size_t i = 0; i < todo.size(); ++i) {
     const size_t v = todo[i];
-    computed += EnsureSuperpixels(workspace, views[v], plan.depth_sizes[v], options.superpixels,
-                                  superpixel_cache_dir) ? 1 : 0;
+    computed += EnsureViewCaches(workspace, views[v], plan.depth_sizes[v], options.superpixels,
+                                 superpixel_cache_dir) ? 1 : 0;
     if (progress) progress("superpixels", i + 1, todo.size());
   }
   return computed;
 }
 
 TileFusionResult FuseTile(const ColmapWorkspace& workspace, const TilePlan& plan, const PlannedTile& tile,
-                          const SacOptions& options, const std::string& superpixel_cache_dir, PointSink& sink) {
+                          const SacOptions& options, const std::string& superpixel_cache_dir, PointSink& sink,
+                          ClusterTableCache* cluster_cache) {
   const auto& views = workspace.views();
   std::vector<WindowRasters> rasters;
   rasters.reserve(tile.views.size());
@@ -163,7 +166,7 @@ TileFusionResult FuseTile(const ColmapWorkspace& workspace, const TilePlan& plan
   for (const TileViewWindow& tw : tile.views) {
     const View& view = views[tw.view];
     const DepthRasterSize& size = plan.depth_sizes[tw.view];
-    rasters.push_back(LoadWindow(workspace, view, size, tw.window, superpixel_cache_dir));
+    rasters.push_back(LoadWindow(workspace, view, size, tw.window, superpixel_cache_dir, cluster_cache));
     WindowRasters& r = rasters.back();
     SacView sv;
     sv.view = view;

@@ -34,10 +34,23 @@ class TilingEndToEndTest : public testing::TinyBlockSuite {
   static void SetUpTestSuite() {
     SimulateBlock();
     const double gsd = BlockGsd();
-    for (const auto& [name, tile] : {std::pair<std::string, double>{"untiled", 0.0}, {"tiled", 20.0}}) {
+    // tile_size_m 0 with the default 4 GB budget: the tiny block fits, so it runs untiled. "auto_t1"/"auto_t2":
+    // a 0.15 GiB budget the whole block does not fit (~0.16 GiB estimated), so tiles are sized from it, run on
+    // one and on two threads. "guard": 60 m tiles given explicitly, which exceed a 0.14 GiB budget.
+    struct Variant {
+      std::string name;
+      double tile_size_m;
+      std::string resources;
+    };
+    for (const Variant& v : {Variant{"untiled", 0.0, ""}, Variant{"tiled", 20.0, ""},
+                             Variant{"auto_t1", 0.0, "resources: {memory_gb: 0.15, threads: 1}\n"},
+                             Variant{"auto_t2", 0.0, "resources: {memory_gb: 0.15, threads: 2}\n"},
+                             Variant{"guard", 60.0, "resources: {memory_gb: 0.14}\n"}}) {
+      const std::string& name = v.name;
       std::ofstream(Config(name)) << "input: {path: " << Block().string() << "}\n"
                                   << "output: {dir: " << Out(name).string() << "}\n"
-                                  << "tiling: {tile_size_m: " << tile << ", halo_m: 5}\n"
+                                  << "tiling: {tile_size_m: " << v.tile_size_m << ", halo_m: 5}\n"
+                                  << v.resources
                                   << "evaluation: {reference: " << (Block() / "reference.las").string()
                                   << ", mask: " << (Block() / "eval_mask.png").string() << ", gsd_m: " << gsd
                                   << "}\n";
@@ -124,6 +137,35 @@ TEST_F(TilingEndToEndTest, TiledRunStitchesWithoutSeamsAndMatchesUntiled) {
               static_cast<unsigned long long>(untiled_count), f1_untiled[0], f1_untiled[1],
               std::chrono::duration<double>(t1 - t0).count(), tiled.size(), 100.0 * (ratio - 1.0), f1_tiled[0],
               f1_tiled[1], std::chrono::duration<double>(t2 - t1).count(), near_border, duplicates);
+}
+
+TEST_F(TilingEndToEndTest, BudgetSizesTilesAndThreadsDoNotChangeTheOutput) {
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("auto_t1")), &out), 0) << out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("auto_t2")), &out), 0) << out;
+  EXPECT_NE(out.find("2 worker threads"), std::string::npos) << out;
+  for (const std::string name : {"auto_t1", "auto_t2"}) {
+    const nlohmann::json report = ReadJson(Out(name) / "run_report.json");
+    const double tile = report.at("tiling_decision").at("tile_size_m").get<double>();
+    EXPECT_GT(tile, 0.0) << name << ": the block should not fit the budget untiled";
+    EXPECT_GT(report.at("tiling").at("tiles_run").get<int>(), 1);
+    EXPECT_LE(report.at("memory").at("estimate_gib").get<double>(), 0.15);
+    // The whole process stayed inside the budget (0.15 GiB = 153.6 MiB).
+    EXPECT_LT(report.at("peak_rss_mib").get<double>(), 0.15 * 1024) << name;
+  }
+  // One or two tile workers: the same tiles, the same bytes (but for the header's creation date).
+  EXPECT_EQ(testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("auto_t1") / "fused.las")),
+            testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("auto_t2") / "fused.las")));
+}
+
+TEST_F(TilingEndToEndTest, TilesOverTheBudgetFailWithTheOutOfMemoryGuard) {
+  std::string out;
+  const int code = RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("guard")), &out);
+  EXPECT_NE(code, 0) << out;
+  EXPECT_NE(out.find("out-of-memory guard"), std::string::npos) << out;
+  EXPECT_FALSE(fs::exists(Out("guard") / "fused.las"));
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("guard")), &out), 0) << out;
+  EXPECT_NE(out.find("out-of-memory guard"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -12,8 +12,9 @@
 namespace sacfuse {
 
 struct TilingOptions {
-  // Tile edge length, metres. 0 = one tile covering everything (untiled run); automatic sizing from the memory
-  // budget comes later. >= 0.
+  // Tile edge length, metres. 0 = automatic (jobs/auto_tiling.h): untiled when the whole block fits in the
+  // memory budget, else the largest tiles of which resources.threads fit at once. A plan built with 0 has one
+  // tile covering everything. >= 0.
   double tile_size_m = 0.0;
   double halo_m = 5.0;           // halo around each tile core, metres; >= 0
   int window_margin_px = 16;     // padding of each view's depth-raster window, depth pixels; >= 0

@@ -6,22 +6,12 @@
 #include <optional>
 
 #include "core/camera.h"
+#include "core/pixel_window.h"
 #include "core/view.h"
 #include "tiling/footprint.h"
 
 namespace sacfuse {
 
-// Half-open pixel rectangle of a raster: rows [row_begin, row_end), cols [col_begin, col_end).
-struct PixelWindow {
-  int row_begin = 0, row_end = 0;
-  int col_begin = 0, col_end = 0;
-  int width() const { return col_end - col_begin; }
-  int height() const { return row_end - row_begin; }
-  size_t num_pixels() const { return static_cast<size_t>(width()) * height(); }
-  bool operator==(const PixelWindow& o) const {
-    return row_begin == o.row_begin && row_end == o.row_end && col_begin == o.col_begin && col_end == o.col_end;
-  }
-};
 
 // The window of `view`'s raster of raster_width x raster_height (e.g. its depth map; intrinsics are scaled from
 // the image size) that covers the box `xy` x [z_min_m, z_max_m], padded by margin_px and clipped; nullopt when

@@ -10,7 +10,7 @@
 
 namespace sacfuse::cli {
 
-void RunEvaluation(const EvalRequest& request, std::ostream& out) {
+EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out) {
   EvalOptions options;
   options.gsd_m = request.gsd_m;
   options.tau_gsd = request.tau_gsd;
@@ -18,9 +18,14 @@ void RunEvaluation(const EvalRequest& request, std::ostream& out) {
   options.mask_path = request.mask_png;
   options.align = request.align;
   options.json_path = request.json_path;
+  options.max_result_points = request.max_result_points;
   ValidateEvalOptions(options);
   spdlog::info("evaluating {} against {}", request.result_las, request.reference_las);
   const EvalReport report = EvaluateLasFiles(request.result_las, request.reference_las, options);
+  if (report.result_stride > 1) {
+    out << "scoring every " << report.result_stride << "th of " << report.result_points_in_file
+        << " result points (memory budget)\n";
+  }
   out << FormatEvalTable(report);
   for (const auto& s : report.scores) {
     char line[160];
@@ -32,6 +37,7 @@ void RunEvaluation(const EvalRequest& request, std::ostream& out) {
     WriteEvalReportJson(report, request.json_path);
     out << "scores written to " << request.json_path << "\n";
   }
+  return report;
 }
 
 }  // namespace sacfuse::cli

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/eval/eval.h"
+
 namespace sacfuse::cli {
 
 struct EvalRequest {
@@ -15,9 +17,11 @@ struct EvalRequest {
   std::vector<double> tau_m;              // explicit thresholds (override tau_gsd)
   bool align = false;
   std::string json_path;                  // "" = no JSON
+  double max_result_points = 0;           // score every k-th point beyond this many (0 = all; EvalOptions)
 };
 
-// Prints the table and a one-line F1 summary to `out`; writes JSON when asked. Throws on bad input.
-void RunEvaluation(const EvalRequest& request, std::ostream& out);
+// Prints the table and a one-line F1 summary to `out`; writes JSON when asked; returns the report. Throws on bad
+// input.
+EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out);
 
 }  // namespace sacfuse::cli

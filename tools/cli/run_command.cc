@@ -101,6 +101,8 @@ int RunCommand(const RunArgs& args) {
       request.tau_gsd = config.evaluation.tau_gsd;
       request.align = config.evaluation.align;
       request.json_path = (std::filesystem::path(config.output.dir) / "eval.json").string();
+      // Scoring holds ~72 bytes per result point (measured): half the budget bounds how many are scored.
+      request.max_result_points = 0.5 * config.resources.memory_gb * (1 << 30) / 72.0;
       RunEvaluation(request, std::cout);
     }
     return kExitOk;

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -7,6 +8,7 @@
 #include <spdlog/spdlog.h>
 
 #include "config/job_config.h"
+#include "core/error.h"
 #include "io/atomic_file.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
@@ -27,6 +29,8 @@ struct SimulateArgs {
   bool write_truth = false;
   std::optional<bool> consistency_graphs;  // unset = the preset's default
   double area_m = 0.0;
+  bool no_normal_maps = false;
+  double pixel_scale = 1.0;
 };
 
 // A ready-to-run config next to the block: `sacfuse run DIR/sacfuse.yaml` fuses and scores it.
@@ -57,6 +61,11 @@ int Simulate(const SimulateArgs& args) {
     options.obliques = !args.no_obliques;
     options.write_truth = args.write_truth;
     if (args.consistency_graphs) options.write_consistency_graphs = *args.consistency_graphs;
+    options.write_normal_maps = !args.no_normal_maps;
+    if (args.pixel_scale <= 0.0 || !std::isfinite(args.pixel_scale)) {
+      throw ConfigError("--pixel-scale = " + std::to_string(args.pixel_scale) + ": must be > 0");
+    }
+    if (args.pixel_scale != 1.0) ScaleSimPixels(args.pixel_scale, &options);
     ValidateSimOptions(options);
     SetupLogging("info", (std::filesystem::path(args.out_dir) / "simulate.log").string());
     spdlog::info("simulating preset '{}' (seed {}) into {}", options.preset, options.seed, args.out_dir);
@@ -102,6 +111,13 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       "--no-consistency-graphs", [args] { args->consistency_graphs = false; },
       "Do not write stereo/consistency_graphs/ (default: off for medium and dortmund)");
   graphs_on->excludes(graphs_off);
+  cmd->add_flag("--no-normal-maps", args->no_normal_maps,
+                "Do not write stereo/normal_maps/ (3x the depth maps on disk; sacfuse does not read them, COLMAP's "
+                "stereo_fusion does)");
+  cmd->add_option("--pixel-scale", args->pixel_scale,
+                  "Scale the image size by this factor at the same flight plan and optics (pixels x s^2, GSD / s): "
+                  "the same block at another resolution, e.g. for scaling benchmarks")
+      ->capture_default_str();
   cmd->callback([args, exit_code] { *exit_code = Simulate(*args); });
 }
 

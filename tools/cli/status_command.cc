@@ -29,9 +29,7 @@ struct StatusArgs {
 };
 
 int StatusCommand(const StatusArgs& args) {
-  const JobConfig config = LoadJobConfig(args.config_path);
-  if (config.tiling.tile_size_m <= 0)
-    throw ConfigError(args.config_path + ": not a tiled run (tiling.tile_size_m = 0)");
+  JobConfig config = LoadJobConfig(args.config_path);
   const std::string tiles_dir = TilesDir(config);
   const std::string manifest_path = (std::filesystem::path(tiles_dir) / "manifest.json").string();
   std::ifstream in(manifest_path);
@@ -40,6 +38,8 @@ int StatusCommand(const StatusArgs& args) {
     return kExitOk;
   }
   const nlohmann::json manifest = nlohmann::json::parse(in);
+  // tiling.tile_size_m = 0: the size the run chose from its memory budget, as recorded in the manifest.
+  if (config.tiling.tile_size_m <= 0) config.tiling.tile_size_m = manifest.value("tile_size_m", 0.0);
   const std::string hash = ResultSettingsHash(config);
   std::vector<std::string> done, failed, pending;
   std::vector<std::string> failed_reasons, pending_reasons;

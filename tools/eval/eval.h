@@ -60,7 +60,9 @@ struct EvalReport {
   std::vector<ThresholdScore> scores;  // one per threshold, ascending
   double mean_abs_distance_m = 0.0;
   double median_abs_distance_m = 0.0;
-  uint64_t result_points = 0;
+  uint64_t result_points = 0;         // scored (after the stride below)
+  uint64_t result_points_in_file = 0;  // EvaluateLasFiles: all points of the file (0 = not from a file)
+  uint64_t result_stride = 1;          // EvaluateLasFiles: every k-th point was scored (max_result_points)
   uint64_t result_points_evaluated = 0;
   uint64_t result_points_unobserved = 0;
   uint64_t result_points_outside_mask = 0;

@@ -43,6 +43,8 @@ void ValidateEvalOptions(const EvalOptions& o) {
   non_negative("eval.top_cell_m", o.top_cell_m, " (0 = 4 x gsd_m)");
   non_negative("eval.visible_margin_m", o.visible_margin_m, "");
   c.AtLeast("eval.align_max_iterations", o.align_max_iterations, 1);
+  c.Require(std::isfinite(o.max_result_points) && o.max_result_points >= 0, "eval.max_result_points",
+            OptionChecker::ToString(o.max_result_points), "must be >= 0 (0 = every point)");
   c.Require(std::isfinite(o.align_max_points) && o.align_max_points >= 100, "eval.align_max_points",
             OptionChecker::ToString(o.align_max_points), "must be >= 100");
   c.OneOf("eval.align_mode", o.align_mode, {"point_to_plane", "point_to_point"});

@@ -17,6 +17,9 @@ struct EvalOptions {
   double align_max_points = 200000;       // subsample for ICP
   double top_cell_m = 0.0;                // XY cell of the reference top-surface model, metres (0 = 4 x gsd)
   std::string json_path;                  // write the report as JSON here ("" = none)
+  // Result clouds with more points are scored on every k-th point (k = ceil(points / this)), so scoring stays
+  // inside a memory budget (~72 bytes per scored point). 0 = every point.
+  double max_result_points = 0;
 
   // --- Added by the eval module (defaults keep the behaviour documented in eval.h) ---
   // Completeness counts a reference point only when cameras can see it: z >= occluder - max(tau, this), metres.

@@ -28,6 +28,8 @@ std::string EvalReportToJson(const EvalReport& r, int indent) {
   j["mean_abs_distance_m"] = r.mean_abs_distance_m;
   j["median_abs_distance_m"] = r.median_abs_distance_m;
   j["result_points"] = r.result_points;
+  j["result_points_in_file"] = r.result_points_in_file;
+  j["result_stride"] = r.result_stride;
   j["result_points_evaluated"] = r.result_points_evaluated;
   j["result_points_unobserved"] = r.result_points_unobserved;
   j["result_points_outside_mask"] = r.result_points_outside_mask;

@@ -1,5 +1,8 @@
 #include "tools/sim/sim_options.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.h"
 
 namespace sacfuse {
@@ -70,6 +73,13 @@ SimOptions SimPreset(const std::string& name) {
     throw ConfigError("--preset = \"" + name + "\": unknown preset; must be one of {" + names + "}");
   }
   return o;
+}
+
+void ScaleSimPixels(double factor, SimOptions* o) {
+  o->nadir_width_px = std::max(1, static_cast<int>(std::lround(o->nadir_width_px * factor)));
+  o->nadir_height_px = std::max(1, static_cast<int>(std::lround(o->nadir_height_px * factor)));
+  o->pixel_size_um /= factor;
+  o->gsd_m /= factor;
 }
 
 }  // namespace sacfuse

@@ -86,6 +86,10 @@ struct SimOptions {
   // On for tiny; off for small (1.1 GB, ~14 s), medium and dortmund: the pass costs about 20 reprojections per depth pixel
   // and holds 21 depth maps in memory (about 4 GB at dortmund size), and the graphs are a few bytes per pixel.
   bool write_consistency_graphs = true;
+  // stereo/normal_maps/ (COLMAP's normals, 3 floats per depth pixel: three times the depth maps' size). sacfuse
+  // itself does not read them (SAC fits its own normals); COLMAP's stereo_fusion needs them. Off saves 36 GB at
+  // dortmund size.
+  bool write_normal_maps = true;
 };
 
 // Preset names (details in sim_options.cc): "tiny" (60 m, 20 views of 320x240 px at 20 cm GSD; about a second,
@@ -93,6 +97,9 @@ struct SimOptions {
 // 2000x1500 px), "dortmund" (16 nadir + 43 oblique views of 6132x8176 px at 10 cm GSD, about 1 km2).
 // Throws ConfigError for an unknown name.
 SimOptions SimPreset(const std::string& name);
+// The same flight over the same scene at `factor` times the image size: image sides x factor, pixel pitch and GSD
+// / factor (so the flying height and footprints stay); the reference cloud keeps its density.
+void ScaleSimPixels(double factor, SimOptions* options);
 std::vector<std::string> SimPresetNames();
 
 }  // namespace sacfuse

@@ -47,11 +47,13 @@ struct Workspace {
   std::string Normal(const std::string& name) const {
     return Join(root, "stereo/normal_maps/" + name + ".geometric.bin");
   }
-  void WriteMaps(const std::string& name, const DepthMap& depth, const NormalMap& normals) const {
+  // Writes the depth map and, when `camera` is given, the normal map computed from it with that camera.
+  void WriteMaps(const std::string& name, const DepthMap& depth, const PinholeCamera* camera) const {
     CreateParentDirs(Depth(name));
-    CreateParentDirs(Normal(name));
     WriteColmapArray(Depth(name), depth);
-    WriteColmapArray(Normal(name), normals);
+    if (camera == nullptr) return;
+    CreateParentDirs(Normal(name));
+    WriteColmapArray(Normal(name), NormalsFromDepth(depth, *camera));
   }
   void AddView(uint32_t index, const PlannedView& view, const Rigid3d& pose, std::vector<ColmapPoint2D> points2D) {
     ColmapCamera camera;
@@ -100,7 +102,7 @@ std::vector<View> ModelViews(const ColmapModel& model) {
 
 Json ViewJson(uint32_t index, const PlannedView& view, const Rigid3d& written, const PoseError& pose_error,
               const ViewErrorModel& model, const DepthErrorReport& report, const PinholeCamera& depth_camera,
-              const RenderedView& rendered, const Workspace& ws, double ground_z) {
+              const RenderedView& rendered, const Workspace& ws, double ground_z, bool has_normals) {
   Json bias = Json::array();
   for (const CosineMode& m : report.bias_modes) {
     bias.push_back({{"fu", m.fu}, {"fv", m.fv}, {"phase", m.phase}, {"weight", m.weight}});
@@ -145,7 +147,7 @@ Json ViewJson(uint32_t index, const PlannedView& view, const Rigid3d& written, c
         {"valid_pixels", report.valid_out}}},
       {"render", {{"tiles", rendered.tiles}, {"triangles", rendered.triangles}}},
       {"files",
-       {{"image", rel(ws.Image(view.name))}, {"depth", rel(ws.Depth(view.name))}, {"normal", rel(ws.Normal(view.name))}}},
+       {{"image", rel(ws.Image(view.name))}, {"depth", rel(ws.Depth(view.name))}, {"normal", has_normals ? Json(rel(ws.Normal(view.name))) : Json(nullptr)}}},
   };
 }
 
@@ -226,17 +228,17 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
     {
       const DepthMap depth = ApplyDepthErrors(rendered.depth, error_model, StreamKey(o.seed, Stream::kStereoNoise, i),
                                               &error_report);
-      main_ws.WriteMaps(view.name, depth, NormalsFromDepth(depth, depth_camera));
+      main_ws.WriteMaps(view.name, depth, o.write_normal_maps ? &depth_camera : nullptr);
     }
     summary.depth_pixels += error_report.valid_out;
     main_ws.AddView(i, view, written, std::move(written_points2D));
     if (o.write_truth) {
-      truth_ws.WriteMaps(view.name, rendered.depth, NormalsFromDepth(rendered.depth, depth_camera));
+      truth_ws.WriteMaps(view.name, rendered.depth, o.write_normal_maps ? &depth_camera : nullptr);
       CreateRelativeSymlink(main_ws.Image(view.name), truth_ws.Image(view.name));
       truth_ws.AddView(i, view, view.cam_from_world, std::move(true_points2D));
     }
     views.push_back(ViewJson(i, view, written, pose_error, error_model, error_report, depth_camera, rendered, main_ws,
-                             scene.ground_z));
+                             scene.ground_z, o.write_normal_maps));
     names.push_back(view.name);
     (oblique ? summary.num_oblique : summary.num_nadir) += 1;
     report("views", v + 1, plan.views.size());

@@ -1,0 +1,51 @@
+#pragma once
+// How much memory the steps of a run take, so tile sizes and tile parallelism can be chosen from
+// `resources.memory_gb` before anything is loaded. Coefficients were measured with /usr/bin/time -v on simulated
+// blocks (README "Memory budget") and carry a margin; peak RSS of real runs is reported next to the estimate.
+#include <cstdint>
+#include <vector>
+
+#include "io/colmap_workspace.h"
+
+namespace sacfuse {
+
+constexpr uint64_t kMiB = uint64_t{1} << 20;
+constexpr uint64_t kGiB = uint64_t{1} << 30;
+
+// Bytes a tile holds per pixel of its views' depth windows: float32 depth (4) + int32 superpixel label (4) + RGB
+// on the depth grid (3) + SAC's working memory (nodes, correspondences, labels, emitted points: ~1.5 measured).
+// Measured ~12.5 B/px of peak RSS per window pixel on the small block's tiles; 20 keeps a margin for allocator
+// slack and denser output.
+constexpr uint64_t kTileBytesPerWindowPixel = 20;
+// Untiled SAC holds every view whole: per depth pixel as a tile (20), plus the decoded image (3 B per image
+// pixel). Measured ~14.4 B/px on the small block (depth and image of equal size).
+constexpr uint64_t kUntiledBytesPerDepthPixel = 20;
+constexpr uint64_t kBytesPerImagePixel = 3;
+// The superpixel pass holds one view at a time: depth (4) + image on the depth grid and as Lab (6) + labels (4) +
+// colour cache raster (3) + SLIC blocks in flight, ~20 B per depth pixel, plus the decoded image.
+constexpr uint64_t kSuperpixelPassBytesPerDepthPixel = 20;
+// The process itself: code, workspace model, logs, LAS writer buffers.
+constexpr uint64_t kProcessBaseBytes = 128 * kMiB;
+
+// Pixel counts of a workspace's depth rasters and images (depth sizes from the headers; no raster is read).
+struct BlockPixels {
+  std::vector<uint64_t> depth_pixels;  // per view
+  std::vector<uint64_t> image_pixels;  // per view (camera size)
+  uint64_t total_depth_pixels() const;
+  uint64_t total_image_pixels() const;
+};
+BlockPixels MeasureBlockPixels(const ColmapWorkspace& workspace);
+
+// Byte budget of resources.memory_gb.
+uint64_t MemoryBudgetBytes(double memory_gb);
+// Share of the budget kept for superpixel cluster tables shared by tiles (jobs/cluster_table_cache.h).
+uint64_t ClusterCacheBudgetBytes(uint64_t budget_bytes);
+// What is left for tiles running at once: budget - process base - cluster cache.
+uint64_t TileMemoryPoolBytes(uint64_t budget_bytes);
+
+uint64_t TileBytes(uint64_t window_pixels);
+uint64_t UntiledSacBytes(const BlockPixels& pixels);
+// Peak of the superpixel pass: its largest view.
+uint64_t SuperpixelPassBytes(const BlockPixels& pixels);
+
+}  // namespace sacfuse
