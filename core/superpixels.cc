@@ -1,6 +1,7 @@
 #include "core/superpixels.h"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -14,6 +15,7 @@
 #include <opencv2/ximgproc/slic.hpp>
 
 #include "core/error.h"
+#include "core/slic_fast.h"
 
 namespace sacfuse {
 namespace {
@@ -22,6 +24,9 @@ namespace {
 constexpr int kMinElementPercent = 25;
 // Bumped whenever the segmentation changes for the same options (invalidates cached files).
 constexpr char kAlgorithmVersion[] = "sacfuse.superpixels.v1";
+// Version of our own SLIC (algorithm "fast"), hashed only for that algorithm: bump it when FastSlicSegment's
+// output changes.
+constexpr char kFastSlicVersion[] = "sacfuse.slic_fast.v1";
 
 struct Block {
   cv::Rect rect;  // in depth-raster pixels
@@ -106,25 +111,75 @@ cv::Mat BlockRgb(const RgbImage& image, const DepthMap& depth, const cv::Rect& r
   return rgb;
 }
 
-float MedianInPlace(float* begin, float* end) {
-  const size_t n = static_cast<size_t>(end - begin);
-  float* mid = begin + n / 2;
-  std::nth_element(begin, mid, end);
-  const double upper = *mid;
-  if (n % 2 == 1) return static_cast<float>(upper);
-  const double lower = *std::max_element(begin, mid);
-  return static_cast<float>(0.5 * (lower + upper));
+// Scratch space of one worker thread, reused block after block (fresh pages cost more than the work on them).
+struct BlockScratch {
+  FastSlicWorkspace slic;
+  cv::Mat lab;
+  std::vector<float> values;
+  std::vector<uint32_t> keys;
+  std::vector<size_t> offset, fill;
+};
+
+// The k-th smallest (0-based) of n >= 1 positive floats given as their bit patterns (which order like the
+// floats), by radix selection on 8-bit digits from the highest bit in which they differ. Reorders `keys`.
+uint32_t SelectPositiveBits(uint32_t* keys, size_t n, size_t k) {
+  uint32_t lo = keys[0], hi = keys[0];
+  for (size_t i = 1; i < n; ++i) {
+    lo = std::min(lo, keys[i]);
+    hi = std::max(hi, keys[i]);
+  }
+  if (lo == hi) return lo;
+  const int top = 31 - __builtin_clz(lo ^ hi);  // bits above `top` are equal in all keys
+  int shift = top >= 7 ? top - 7 : 0;
+  uint32_t histogram[256];
+  for (;;) {
+    std::fill(histogram, histogram + 256, 0u);
+    for (size_t i = 0; i < n; ++i) ++histogram[(keys[i] >> shift) & 0xFFu];
+    uint32_t digit = 0;
+    size_t below = 0;
+    while (below + histogram[digit] <= k) below += histogram[digit++];
+    k -= below;
+    size_t m = 0;  // keep the keys with that digit (branch-free compaction)
+    for (size_t i = 0; i < n; ++i) {
+      const uint32_t key = keys[i];
+      keys[m] = key;
+      m += ((key >> shift) & 0xFFu) == digit ? 1 : 0;
+    }
+    n = m;
+    if (shift == 0 || n == 1) return keys[0];
+    shift = shift >= 8 ? shift - 8 : 0;  // the remaining varying bits fit in the low byte once shift is 0
+  }
 }
 
-// SLIC input channels of a block: 8-bit Lab, plus the weighted depth when depth_weight > 0.
-std::vector<cv::Mat> BlockChannels(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
-                                   const SuperpixelOptions& options) {
-  cv::Mat lab;
-  cv::cvtColor(BlockRgb(image, depth, r), lab, cv::COLOR_RGB2Lab);
-  std::vector<cv::Mat> channels;
-  cv::split(lab, channels);
-  if (options.depth_weight <= 0.0f) return channels;
+// Median of n >= 1 valid (positive, finite) depths: the middle value, or the mean of the two middle values for
+// an even count. Exact order statistics, so equal to sorting; `values` is left unchanged.
+float MedianOfValidDepths(const float* values, size_t n, std::vector<uint32_t>* scratch) {
+  if (scratch->size() < n) scratch->resize(n);
+  uint32_t* keys = scratch->data();
+  std::memcpy(keys, values, n * sizeof(float));
+  const size_t mid = n / 2;
+  const uint32_t upper_bits = SelectPositiveBits(keys, n, mid);
+  float upper;
+  std::memcpy(&upper, &upper_bits, sizeof(float));
+  if (n % 2 == 1) return upper;
+  // The value ranked mid - 1: the largest one below `upper`, unless `upper` itself occurs below rank mid.
+  size_t below = 0;
+  float largest_below = 0.0f;
+  for (size_t i = 0; i < n; ++i) {
+    const float v = values[i];
+    if (v < upper) {
+      ++below;
+      largest_below = std::max(largest_below, v);
+    }
+  }
+  const double lower = below == mid ? static_cast<double>(largest_below) : static_cast<double>(upper);
+  return static_cast<float>(0.5 * (lower + static_cast<double>(upper)));
+}
 
+// The extra SLIC channel of a block when depth_weight > 0 (else empty): depth_weight * (depth - median valid
+// depth of the block), 0 (= the median) for invalid depths.
+cv::Mat BlockDepthChannel(const DepthMap& depth, const cv::Rect& r, const SuperpixelOptions& options) {
+  if (options.depth_weight <= 0.0f) return cv::Mat();
   std::vector<float> valid;
   valid.reserve(static_cast<size_t>(r.area()));
   for (int row = r.y; row < r.y + r.height; ++row) {
@@ -133,7 +188,8 @@ std::vector<cv::Mat> BlockChannels(const RgbImage& image, const DepthMap& depth,
       if (IsValidDepth(d)) valid.push_back(d);
     }
   }
-  const double reference = valid.empty() ? 0.0 : MedianInPlace(valid.data(), valid.data() + valid.size());
+  std::vector<uint32_t> scratch;
+  const double reference = valid.empty() ? 0.0 : MedianOfValidDepths(valid.data(), valid.size(), &scratch);
   cv::Mat depth_channel(r.height, r.width, CV_32F);
   for (int row = 0; row < r.height; ++row) {
     float* out = depth_channel.ptr<float>(row);
@@ -142,6 +198,23 @@ std::vector<cv::Mat> BlockChannels(const RgbImage& image, const DepthMap& depth,
       out[col] = IsValidDepth(d) ? static_cast<float>(options.depth_weight * (d - reference)) : 0.0f;
     }
   }
+  return depth_channel;
+}
+
+// The block's 8-bit Lab image (CV_8UC3) on the depth grid, into `lab` (its buffer is reused when large enough).
+void BlockLab(const RgbImage& image, const DepthMap& depth, const cv::Rect& r, cv::Mat* lab) {
+  cv::cvtColor(BlockRgb(image, depth, r), *lab, cv::COLOR_RGB2Lab);
+}
+
+// OpenCV SLIC input channels of a block: 8-bit Lab, plus the weighted depth when depth_weight > 0.
+std::vector<cv::Mat> BlockChannels(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
+                                   const SuperpixelOptions& options) {
+  std::vector<cv::Mat> channels;
+  cv::Mat lab;
+  BlockLab(image, depth, r, &lab);
+  cv::split(lab, channels);
+  cv::Mat depth_channel = BlockDepthChannel(depth, r, options);
+  if (depth_channel.empty()) return channels;
   for (cv::Mat& c : channels) c.convertTo(c, CV_32F);
   channels.push_back(depth_channel);
   return channels;
@@ -169,10 +242,42 @@ cv::Mat SegmentBlock(const RgbImage& image, const DepthMap& depth, const cv::Rec
   return labels;
 }
 
-// Segments block `r`, writes block-local dense labels (first-appearance order) into `out_labels` (the global
-// row-major raster) and returns the block's clusters.
-std::vector<SuperpixelCluster> ProcessBlock(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
-                                            const SuperpixelOptions& options, int32_t* out_labels) {
+// Our own SLIC ("fast") on block `r`: writes block-local dense labels (first-appearance order) straight into
+// `out_labels` (the global row-major raster) and returns the number of clusters.
+int32_t SegmentBlockFast(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
+                         const SuperpixelOptions& options, int32_t* out_labels, BlockScratch* scratch) {
+  const size_t stride = static_cast<size_t>(depth.width);
+  int32_t* block_labels = out_labels + static_cast<size_t>(r.y) * stride + r.x;
+  if (r.width < options.region_size_px || r.height < options.region_size_px) {
+    for (int row = 0; row < r.height; ++row) {
+      std::fill(block_labels + row * stride, block_labels + row * stride + r.width, 0);
+    }
+    return 1;  // too small for SLIC seeds: one cluster (as for the OpenCV algorithms)
+  }
+  cv::Mat& lab = scratch->lab;
+  BlockLab(image, depth, r, &lab);
+  const cv::Mat depth_channel = BlockDepthChannel(depth, r, options);
+  FastSlicInput input;
+  input.width = r.width;
+  input.height = r.height;
+  input.lab = lab.ptr<uint8_t>(0);
+  input.lab_stride = lab.step[0];
+  if (!depth_channel.empty()) {
+    input.extra = depth_channel.ptr<float>(0);
+    input.extra_stride = depth_channel.step[0] / sizeof(float);
+  }
+  FastSlicParams params;
+  params.region_size_px = options.region_size_px;
+  params.ruler = options.ruler;
+  params.iterations = options.iterations;
+  params.min_fragment_percent = kMinElementPercent;
+  return FastSlicSegment(input, params, block_labels, stride, &scratch->slic);
+}
+
+// OpenCV SLIC on block `r`: writes block-local dense labels (first-appearance order) into `out_labels` (the
+// global row-major raster) and returns the number of clusters.
+int32_t SegmentBlockOpenCv(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
+                           const SuperpixelOptions& options, int32_t* out_labels) {
   cv::Mat raw;
   try {
     raw = SegmentBlock(image, depth, r, options);
@@ -189,37 +294,68 @@ std::vector<SuperpixelCluster> ProcessBlock(const RgbImage& image, const DepthMa
   }
   std::vector<int32_t> remap(static_cast<size_t>(max_label) + 1, -1);
   int32_t count = 0;
-  struct Sums {
-    double col = 0, row = 0;
-    uint32_t pixels = 0, valid = 0;
-  };
-  std::vector<Sums> sums;
   const size_t stride = static_cast<size_t>(depth.width);
   for (int row = 0; row < r.height; ++row) {
     const int32_t* in = raw.ptr<int32_t>(row);
     int32_t* out = out_labels + static_cast<size_t>(r.y + row) * stride + r.x;
-    const float* d = &depth.data[static_cast<size_t>(r.y + row) * stride + r.x];
     for (int col = 0; col < r.width; ++col) {
       int32_t& local = remap[static_cast<size_t>(in[col])];
-      if (local < 0) {
-        local = count++;
-        sums.emplace_back();
-      }
+      if (local < 0) local = count++;
       out[col] = local;
-      Sums& s = sums[static_cast<size_t>(local)];
-      s.col += r.x + col + 0.5;
-      s.row += r.y + row + 0.5;
-      ++s.pixels;
-      if (IsValidDepth(d[col])) ++s.valid;
     }
   }
-  // Valid depths grouped by cluster, then per-cluster medians.
-  std::vector<size_t> offset(sums.size() + 1, 0);
-  for (size_t i = 0; i < sums.size(); ++i) offset[i + 1] = offset[i] + sums[i].valid;
-  std::vector<float> values(offset.back());
-  std::vector<size_t> fill(offset.begin(), offset.end() - 1);
+  return count;
+}
+
+// Statistics of the `count` clusters of block `r`, whose block-local dense labels are in `labels` (the global
+// row-major raster).
+std::vector<SuperpixelCluster> BlockClusterStats(const DepthMap& depth, const cv::Rect& r, const int32_t* labels,
+                                                 int32_t count, const SuperpixelOptions& options,
+                                                 BlockScratch* scratch) {
+  // Integer sums pixel by pixel, into two copies (even and odd columns) so that neighbouring pixels of one cluster
+  // do not wait for each other's store. Exact, so the centroids are the same doubles as summing pixel centres
+  // (c + 0.5) one by one.
+  struct Counts {
+    int64_t col = 0, row = 0;
+    uint32_t pixels = 0, valid = 0;
+  };
+  std::vector<Counts> even(static_cast<size_t>(count)), odd(static_cast<size_t>(count));
+  const size_t stride = static_cast<size_t>(depth.width);
   for (int row = 0; row < r.height; ++row) {
-    const int32_t* lab = out_labels + static_cast<size_t>(r.y + row) * stride + r.x;
+    const int32_t* lab = labels + static_cast<size_t>(r.y + row) * stride + r.x;
+    const float* d = &depth.data[static_cast<size_t>(r.y + row) * stride + r.x];
+    for (int col = 0; col < r.width; ++col) {
+      const int32_t k = lab[col];
+      if (k < 0 || k >= count) throw Error("ComputeSuperpixels: label out of range");
+      Counts& c = ((col & 1) != 0 ? odd : even)[static_cast<size_t>(k)];
+      c.col += col;
+      c.row += row;
+      c.pixels += 1;
+      c.valid += IsValidDepth(d[col]) ? 1u : 0u;
+    }
+  }
+  struct Sums {
+    double col = 0, row = 0;
+    uint32_t pixels = 0, valid = 0;
+  };
+  std::vector<Sums> sums(static_cast<size_t>(count));
+  for (size_t i = 0; i < sums.size(); ++i) {
+    Sums& s = sums[i];
+    s.pixels = even[i].pixels + odd[i].pixels;
+    s.valid = even[i].valid + odd[i].valid;
+    s.col = s.pixels * (r.x + 0.5) + static_cast<double>(even[i].col + odd[i].col);
+    s.row = s.pixels * (r.y + 0.5) + static_cast<double>(even[i].row + odd[i].row);
+  }
+  // Valid depths grouped by cluster (in row-major order), then per-cluster medians.
+  std::vector<size_t>& offset = scratch->offset;
+  offset.assign(sums.size() + 1, 0);
+  for (size_t i = 0; i < sums.size(); ++i) offset[i + 1] = offset[i] + sums[i].valid;
+  std::vector<float>& values = scratch->values;
+  values.resize(offset.back());
+  std::vector<size_t>& fill = scratch->fill;
+  fill.assign(offset.begin(), offset.end() - 1);
+  for (int row = 0; row < r.height; ++row) {
+    const int32_t* lab = labels + static_cast<size_t>(r.y + row) * stride + r.x;
     const float* d = &depth.data[static_cast<size_t>(r.y + row) * stride + r.x];
     for (int col = 0; col < r.width; ++col) {
       if (IsValidDepth(d[col])) values[fill[static_cast<size_t>(lab[col])]++] = d[col];
@@ -233,10 +369,22 @@ std::vector<SuperpixelCluster> ProcessBlock(const RgbImage& image, const DepthMa
     c.centroid_col = static_cast<float>(sums[i].col / sums[i].pixels);
     c.centroid_row = static_cast<float>(sums[i].row / sums[i].pixels);
     if (c.valid_count > 0 && c.valid_count >= static_cast<uint32_t>(options.min_valid_pixels)) {
-      c.depth_m = MedianInPlace(values.data() + offset[i], values.data() + offset[i + 1]);
+      c.depth_m = MedianOfValidDepths(values.data() + offset[i], c.valid_count, &scratch->keys);
     }
   }
   return clusters;
+}
+
+// Segments block `r`, writes block-local dense labels (first-appearance order) into `out_labels` (the global
+// row-major raster) and returns the block's clusters.
+// `scratch` is the calling thread's.
+std::vector<SuperpixelCluster> ProcessBlock(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
+                                            const SuperpixelOptions& options, int32_t* out_labels,
+                                            BlockScratch* scratch) {
+  const int32_t count = options.algorithm == "fast"
+                            ? SegmentBlockFast(image, depth, r, options, out_labels, scratch)
+                            : SegmentBlockOpenCv(image, depth, r, options, out_labels);
+  return BlockClusterStats(depth, r, out_labels, count, options, scratch);
 }
 
 // FNV-1a 64 over a fixed little-endian encoding.
@@ -289,8 +437,8 @@ void ValidateSuperpixelOptions(const SuperpixelOptions& o) {
   if (o.iterations < 1 || o.iterations > 100) {
     errors.push_back(Rule("iterations", o.iterations, "must be in [1, 100]"));
   }
-  if (o.algorithm != "slic" && o.algorithm != "slico" && o.algorithm != "mslic") {
-    errors.push_back(Rule("algorithm", o.algorithm, "must be one of slic, slico, mslic"));
+  if (o.algorithm != "slic" && o.algorithm != "slico" && o.algorithm != "mslic" && o.algorithm != "fast") {
+    errors.push_back(Rule("algorithm", o.algorithm, "must be one of slic, slico, mslic, fast"));
   }
   if (o.block_size_px < 2 * std::max(o.region_size_px, 1)) {
     errors.push_back(Rule("block_size_px", o.block_size_px,
@@ -326,9 +474,12 @@ SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, c
   }
 
   std::vector<std::vector<SuperpixelCluster>> block_clusters(blocks.size());
+  // Scratch space, one per worker thread, freed when this call returns.
+  tbb::enumerable_thread_specific<BlockScratch> scratches;
   tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+    BlockScratch& scratch = scratches.local();
     for (size_t b = range.begin(); b != range.end(); ++b) {
-      block_clusters[b] = ProcessBlock(image, depth, blocks[b].rect, options, map.labels.data());
+      block_clusters[b] = ProcessBlock(image, depth, blocks[b].rect, options, map.labels.data(), &scratch);
     }
   });
 
@@ -424,6 +575,7 @@ uint64_t SuperpixelOptionsHash(const SuperpixelOptions& o) {
   h.I32(o.block_size_px);
   h.F32(o.depth_weight);
   h.I32(o.min_valid_pixels);
+  if (o.algorithm == "fast") h.Str(kFastSlicVersion);  // other algorithms keep their (pinned) fingerprints
   return h.value();
 }
 

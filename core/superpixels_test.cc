@@ -15,6 +15,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/error.h"
+#include "core/slic_fast.h"
 
 namespace sacfuse {
 namespace {
@@ -96,12 +97,58 @@ void ExpectClusterStatsConsistent(const SuperpixelMap& map, const DepthMap& dept
   }
 }
 
+// Every label is one 4-connected region (BFS over the raster, brute force).
+void ExpectClustersConnected(const SuperpixelMap& map) {
+  std::vector<char> seen(map.labels.size(), 0);
+  std::vector<char> label_seen(map.clusters.size(), 0);
+  std::vector<int> stack;
+  for (int r = 0; r < map.height; ++r) {
+    for (int c = 0; c < map.width; ++c) {
+      const size_t start = static_cast<size_t>(r) * map.width + c;
+      if (seen[start]) continue;
+      const int32_t l = map.labels[start];
+      ASSERT_FALSE(label_seen[static_cast<size_t>(l)]) << "label " << l << " has a second component at row " << r
+                                                       << ", col " << c;
+      label_seen[static_cast<size_t>(l)] = 1;
+      seen[start] = 1;
+      stack.assign(1, static_cast<int>(start));
+      while (!stack.empty()) {
+        const int i = stack.back();
+        stack.pop_back();
+        const int rr = i / map.width, cc = i % map.width;
+        const int nr[4] = {rr - 1, rr + 1, rr, rr};
+        const int nc[4] = {cc, cc, cc - 1, cc + 1};
+        for (int k = 0; k < 4; ++k) {
+          if (nr[k] < 0 || nc[k] < 0 || nr[k] >= map.height || nc[k] >= map.width) continue;
+          const size_t j = static_cast<size_t>(nr[k]) * map.width + nc[k];
+          if (!seen[j] && map.labels[j] == l) {
+            seen[j] = 1;
+            stack.push_back(static_cast<int>(j));
+          }
+        }
+      }
+    }
+  }
+}
+
+// Inside the rectangle, labels first appear in increasing order starting at `first` (row-major scan).
+void ExpectFirstAppearanceOrder(const SuperpixelMap& map, int row0, int row1, int col0, int col1, int32_t first) {
+  int32_t next = first;
+  for (int r = row0; r < row1; ++r) {
+    for (int c = col0; c < col1; ++c) {
+      const int32_t l = map.label(r, c);
+      ASSERT_LE(l, next) << "row " << r << ", col " << c;
+      if (l == next) ++next;
+    }
+  }
+}
+
 TEST(SuperpixelsTest, QuadrantsAreNeverStraddled) {
   RgbImage image;
   DepthMap depth;
   MakeQuadrants(128, 96, &image, &depth);
   SuperpixelOptions options;
-  for (const char* algorithm : {"slico", "slic", "mslic"}) {
+  for (const char* algorithm : {"slico", "slic", "mslic", "fast"}) {
     SCOPED_TRACE(algorithm);
     options.algorithm = algorithm;
     const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
@@ -151,7 +198,7 @@ TEST(SuperpixelsTest, DepthWeightMakesClustersFollowDepthSteps) {
     return bad;
   };
   SuperpixelOptions options;
-  for (const char* algorithm : {"slico", "slic"}) {
+  for (const char* algorithm : {"slico", "slic", "fast"}) {
     SCOPED_TRACE(algorithm);
     options.algorithm = algorithm;
     options.depth_weight = 0.0f;
@@ -164,10 +211,13 @@ TEST(SuperpixelsTest, DepthWeightMakesClustersFollowDepthSteps) {
 }
 
 TEST(SuperpixelsTest, BlocksAreIndependentDenseAndThreadCountInvariant) {
+  for (const char* algorithm : {"slico", "fast"}) {
+  SCOPED_TRACE(algorithm);
   RgbImage image;
   DepthMap depth;
   MakeTextured(200, 150, 7, &image, &depth);
   SuperpixelOptions options;
+  options.algorithm = algorithm;
   options.block_size_px = 64;
   // Blocks: columns [0,64) [64,128) [128,200) (the 8-pixel rest is merged), rows [0,64) [64,150).
   const auto block_of = [](int r, int c) { return (r < 64 ? 0 : 3) + std::min(c / 64, 2); };
@@ -205,19 +255,24 @@ TEST(SuperpixelsTest, BlocksAreIndependentDenseAndThreadCountInvariant) {
     EXPECT_EQ(parallel.clusters[i].depth_m, single.clusters[i].depth_m);
     EXPECT_EQ(parallel.clusters[i].pixel_count, single.clusters[i].pixel_count);
   }
+  }
 }
 
 TEST(SuperpixelsTest, OddSizesAndTinyImagesGetSaneLabels) {
   SuperpixelOptions options;
   options.block_size_px = 64;
-  for (const auto& size : std::vector<std::pair<int, int>>{{100, 37}, {97, 131}, {10, 7}, {1, 1}, {20, 300}}) {
-    SCOPED_TRACE(std::to_string(size.first) + "x" + std::to_string(size.second));
-    RgbImage image;
-    DepthMap depth;
-    MakeTextured(size.first, size.second, 3, &image, &depth);
-    const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
-    ASSERT_FALSE(map.clusters.empty());
-    ExpectClusterStatsConsistent(map, depth, options.min_valid_pixels);
+  for (const char* algorithm : {"slico", "fast"}) {
+    options.algorithm = algorithm;
+    for (const auto& size : std::vector<std::pair<int, int>>{{100, 37}, {97, 131}, {10, 7}, {1, 1}, {20, 300}}) {
+      SCOPED_TRACE(std::string(algorithm) + " " + std::to_string(size.first) + "x" + std::to_string(size.second));
+      RgbImage image;
+      DepthMap depth;
+      MakeTextured(size.first, size.second, 3, &image, &depth);
+      const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
+      ASSERT_FALSE(map.clusters.empty());
+      ExpectClusterStatsConsistent(map, depth, options.min_valid_pixels);
+      if (options.algorithm == "fast") ExpectClustersConnected(map);
+    }
   }
 }
 
@@ -231,13 +286,17 @@ TEST(SuperpixelsTest, LargerImageIsResampledToTheDepthGrid) {
       for (int k = 0; k < 3; ++k) big.at(r, c, k) = image.at(r / 2, c / 2, k);
     }
   }
-  const SuperpixelOptions options;
-  const SuperpixelMap reference = ComputeSuperpixels(image, depth, options);
-  const SuperpixelMap map = ComputeSuperpixels(big, depth, options);
-  EXPECT_EQ(map.width, 128);
-  EXPECT_EQ(map.height, 96);
-  EXPECT_EQ(map.labels, reference.labels);  // flat 2x2 blocks area-average to the same colours
-  ExpectClusterStatsConsistent(map, depth, options.min_valid_pixels);
+  SuperpixelOptions options;
+  for (const char* algorithm : {"slico", "fast"}) {
+    SCOPED_TRACE(algorithm);
+    options.algorithm = algorithm;
+    const SuperpixelMap reference = ComputeSuperpixels(image, depth, options);
+    const SuperpixelMap map = ComputeSuperpixels(big, depth, options);
+    EXPECT_EQ(map.width, 128);
+    EXPECT_EQ(map.height, 96);
+    EXPECT_EQ(map.labels, reference.labels);  // flat 2x2 blocks area-average to the same colours
+    ExpectClusterStatsConsistent(map, depth, options.min_valid_pixels);
+  }
 
   RgbImage wrong_aspect(256, 128, 3);
   EXPECT_THROW(ComputeSuperpixels(wrong_aspect, depth, options), Error);
@@ -252,8 +311,12 @@ TEST(SuperpixelsTest, GreyImageEqualsReplicatedRgb) {
     grey.data[i] = rgb.data[3 * i + 1];
     rgb.data[3 * i] = rgb.data[3 * i + 2] = rgb.data[3 * i + 1];
   }
-  const SuperpixelOptions options;
-  EXPECT_EQ(ComputeSuperpixels(grey, depth, options).labels, ComputeSuperpixels(rgb, depth, options).labels);
+  SuperpixelOptions options;
+  for (const char* algorithm : {"slico", "fast"}) {
+    options.algorithm = algorithm;
+    EXPECT_EQ(ComputeSuperpixels(grey, depth, options).labels, ComputeSuperpixels(rgb, depth, options).labels)
+        << algorithm;
+  }
 }
 
 TEST(SuperpixelsTest, InvalidDepthsAreIgnored) {
@@ -376,7 +439,7 @@ TEST(SuperpixelsTest, ValidationNamesEveryBrokenField) {
 TEST(SuperpixelsTest, OptionsHashIsStableAndSensitive) {
   const SuperpixelOptions defaults;
   // Pinned: a change here silently invalidates every cached superpixel file; bump kAlgorithmVersion instead.
-  EXPECT_EQ(SuperpixelOptionsHash(defaults), 0xe1e0cfa30618216eull) << std::hex << SuperpixelOptionsHash(defaults);
+  EXPECT_EQ(SuperpixelOptionsHash(defaults), 0xd21e3213ce480556ull) << std::hex << SuperpixelOptionsHash(defaults);
   std::set<uint64_t> hashes{SuperpixelOptionsHash(defaults)};
   SuperpixelOptions o = defaults;
   o.region_size_px = 17;
@@ -391,6 +454,9 @@ TEST(SuperpixelsTest, OptionsHashIsStableAndSensitive) {
   o.algorithm = "slic";
   hashes.insert(SuperpixelOptionsHash(o));
   o = defaults;
+  o.algorithm = "slico";
+  hashes.insert(SuperpixelOptionsHash(o));
+  o = defaults;
   o.block_size_px = 512;
   hashes.insert(SuperpixelOptionsHash(o));
   o = defaults;
@@ -399,10 +465,223 @@ TEST(SuperpixelsTest, OptionsHashIsStableAndSensitive) {
   o = defaults;
   o.min_valid_pixels = 5;
   hashes.insert(SuperpixelOptionsHash(o));
-  EXPECT_EQ(hashes.size(), 8u);
+  EXPECT_EQ(hashes.size(), 9u);
   o = defaults;
   o.depth_weight = -0.0f;
   EXPECT_EQ(SuperpixelOptionsHash(o), SuperpixelOptionsHash(defaults));
+}
+
+// --- algorithm "fast" (core/slic_fast.h).
+
+// Two flat colours split at any column (on, beside and between seeds): no cluster may contain both. (One round
+// alone is not enough: a pixel farther than S from every seed of its colour cannot be reached by one; the
+// centres' first move fixes that.)
+TEST(SuperpixelsTest, FastKeepsTwoFlatHalvesApart) {
+  const int width = 150, height = 90;
+  for (int edge = 17; edge < 134; ++edge) {
+    SCOPED_TRACE("edge at column " + std::to_string(edge));
+    RgbImage image(width, height, 3);
+    DepthMap depth(width, height, 1, 30.0f);
+    for (int r = 0; r < height; ++r) {
+      for (int c = 0; c < width; ++c) {
+        const uint8_t left[3] = {90, 120, 60}, right[3] = {150, 110, 170};
+        for (int k = 0; k < 3; ++k) image.at(r, c, k) = c < edge ? left[k] : right[k];
+      }
+    }
+    SuperpixelOptions options;
+    options.algorithm = "fast";
+    for (const int iterations : {2, 4}) {
+      options.iterations = iterations;
+      const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
+      std::vector<int> side(map.clusters.size(), -1);
+      for (int r = 0; r < height; ++r) {
+        for (int c = 0; c < width; ++c) {
+          int& s = side[static_cast<size_t>(map.label(r, c))];
+          if (s < 0) s = c < edge;
+          ASSERT_EQ(s, c < edge ? 1 : 0) << "cluster " << map.label(r, c) << " straddles the edge at row " << r
+                                         << ", col " << c << " (" << iterations << " iterations)";
+        }
+      }
+      ExpectClustersConnected(map);
+      ExpectClusterStatsConsistent(map, depth, options.min_valid_pixels);
+    }
+  }
+}
+
+// Identical colour everywhere, a depth step: only the weighted depth channel can separate the two sides.
+TEST(SuperpixelsTest, FastFollowsADepthStepWithIdenticalColour) {
+  const int width = 130, height = 70, step_col = 53;
+  RgbImage image(width, height, 3, 128);
+  DepthMap depth(width, height, 1);
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) depth.at(r, c) = c < step_col ? 18.0f + 0.01f * r : 26.0f + 0.01f * r;
+  }
+  const auto straddling = [&](const SuperpixelMap& map) {
+    std::vector<int> side(map.clusters.size(), -1);
+    std::set<int32_t> bad;
+    for (int r = 0; r < height; ++r) {
+      for (int c = 0; c < width; ++c) {
+        int& s = side[static_cast<size_t>(map.label(r, c))];
+        if (s < 0) s = c < step_col;
+        if (s != (c < step_col ? 1 : 0)) bad.insert(map.label(r, c));
+      }
+    }
+    return bad.size();
+  };
+  SuperpixelOptions options;
+  options.algorithm = "fast";
+  EXPECT_GT(straddling(ComputeSuperpixels(image, depth, options)), 0u) << "colour alone cannot see the step";
+  options.depth_weight = 10.0f;
+  for (const int iterations : {2, 4}) {
+    options.iterations = iterations;
+    const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
+    EXPECT_EQ(straddling(map), 0u) << iterations << " iterations";
+    ExpectClustersConnected(map);
+    ExpectClusterStatsConsistent(map, depth, options.min_valid_pixels);
+  }
+}
+
+// Textured views of several shapes, block sizes, region sizes, iteration counts and depth weights (with invalid
+// depths): labels in range, dense, one 4-connected region each, numbered in row-major block order / first
+// appearance, no fragment below a quarter region except a block's first cluster, statistics equal to a brute-force
+// recomputation, and identical for 1 and 2 threads.
+TEST(SuperpixelsTest, FastLabelsAreConnectedDenseOrderedAndThreadCountInvariant) {
+  struct Case {
+    int width, height, block, region, iterations;
+    float depth_weight;
+  };
+  for (const Case& k : std::vector<Case>{{160, 120, 64, 16, 4, 0.0f},
+                                         {203, 157, 80, 16, 2, 5.0f},
+                                         {97, 61, 1024, 7, 3, 0.0f},
+                                         {64, 48, 32, 2, 1, 0.0f},
+                                         {120, 90, 128, 24, 4, 20.0f}}) {
+    SCOPED_TRACE(std::to_string(k.width) + "x" + std::to_string(k.height) + " block " + std::to_string(k.block) +
+                 " region " + std::to_string(k.region));
+    RgbImage image;
+    DepthMap depth;
+    MakeTextured(k.width, k.height, 17 + k.width, &image, &depth);
+    for (int r = 0; r < k.height; ++r) {
+      for (int c = 0; c < k.width; ++c) {
+        if ((r * 13 + c * 7) % 11 == 0) depth.at(r, c) = 0.0f;
+        if (r < 5 && c < 30) depth.at(r, c) = -1.0f;
+      }
+    }
+    SuperpixelOptions options;
+    options.algorithm = "fast";
+    options.block_size_px = k.block;
+    options.region_size_px = k.region;
+    options.iterations = k.iterations;
+    options.depth_weight = k.depth_weight;
+    SuperpixelMap single;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 1);
+      single = ComputeSuperpixels(image, depth, options);
+    }
+    SuperpixelMap parallel;
+    {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
+      parallel = ComputeSuperpixels(image, depth, options);
+    }
+    ASSERT_EQ(single.labels, parallel.labels);
+    ASSERT_EQ(single.clusters.size(), parallel.clusters.size());
+    for (size_t i = 0; i < single.clusters.size(); ++i) {
+      EXPECT_EQ(single.clusters[i].depth_m, parallel.clusters[i].depth_m);
+      EXPECT_EQ(single.clusters[i].centroid_col, parallel.clusters[i].centroid_col);
+    }
+    ExpectClusterStatsConsistent(single, depth, options.min_valid_pixels);
+    ExpectClustersConnected(single);
+
+    // Blocks as the driver cuts them (a trailing block narrower than 2 regions joins its neighbour).
+    const auto edges = [&](int n) {
+      std::vector<int> e{0};
+      const int full = n / k.block;
+      for (int i = 1; i <= full; ++i) e.push_back(i * k.block);
+      if (full == 0) {
+        e.push_back(n);
+      } else if (n > e.back()) {
+        if (n - e.back() < 2 * k.region) {
+          e.back() = n;
+        } else {
+          e.push_back(n);
+        }
+      }
+      return e;
+    };
+    const std::vector<int> xs = edges(k.width), ys = edges(k.height);
+    int32_t first = 0;
+    for (size_t by = 0; by + 1 < ys.size(); ++by) {
+      for (size_t bx = 0; bx + 1 < xs.size(); ++bx) {
+        ExpectFirstAppearanceOrder(single, ys[by], ys[by + 1], xs[bx], xs[bx + 1], first);
+        std::set<int32_t> in_block;
+        for (int r = ys[by]; r < ys[by + 1]; ++r) {
+          for (int c = xs[bx]; c < xs[bx + 1]; ++c) in_block.insert(single.label(r, c));
+        }
+        ASSERT_EQ(*in_block.begin(), first);
+        ASSERT_EQ(*in_block.rbegin(), first + static_cast<int32_t>(in_block.size()) - 1);
+        // Fragments below 1/4 of the mean region were merged (the block's first cluster may be the exception).
+        const int bw = xs[bx + 1] - xs[bx], bh = ys[by + 1] - ys[by];
+        const int nx = std::max(1, (2 * bw + k.region) / (2 * k.region));
+        const int ny = std::max(1, (2 * bh + k.region) / (2 * k.region));
+        const double quarter = 0.25 * bw * bh / (nx * ny);
+        for (const int32_t l : in_block) {
+          if (l == first) continue;
+          EXPECT_GE(single.clusters[static_cast<size_t>(l)].pixel_count, quarter) << "cluster " << l;
+        }
+        first += static_cast<int32_t>(in_block.size());
+      }
+    }
+    EXPECT_EQ(static_cast<size_t>(first), single.clusters.size());
+  }
+}
+
+// The connectivity pass on hand-made label rasters whose answer is known.
+TEST(SuperpixelsTest, FastConnectivityMergesFragmentsIntoTheRightNeighbour) {
+  const auto run = [](int width, int height, std::vector<int32_t> labels, double min_size, int* count) {
+    std::vector<int32_t> out(labels.size(), -7);
+    *count = FastSlicEnforceConnectivity(width, height, labels.data(), width, min_size, out.data(), width);
+    return out;
+  };
+  int count = 0;
+  // Label 5 appears twice, disconnected and large: two clusters. Numbering by first appearance.
+  EXPECT_EQ(run(6, 3,
+                {5, 5, 9, 9, 5, 5,  //
+                 5, 5, 9, 9, 5, 5,  //
+                 5, 5, 9, 9, 5, 5},
+                4, &count),
+            (std::vector<int32_t>{0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2, 0, 0, 1, 1, 2, 2}));
+  EXPECT_EQ(count, 3);
+  // A 1-pixel fragment inside a row goes to the component left of it (the 3), one at column 0 to the component
+  // above it (the 4); the two 3-pixel parts of label 1 stay separate clusters.
+  EXPECT_EQ(run(5, 4,
+                {1, 1, 2, 2, 2,  //
+                 1, 3, 2, 2, 2,  //
+                 4, 1, 2, 2, 2,  //
+                 1, 1, 2, 2, 2},
+                2, &count),
+            (std::vector<int32_t>{0, 0, 1, 1, 1,  //
+                                  0, 0, 1, 1, 1,  //
+                                  0, 2, 1, 1, 1,  //
+                                  2, 2, 1, 1, 1}));
+  EXPECT_EQ(count, 3);
+  // A small component at the top-left pixel joins the component right of it; numbering starts there.
+  EXPECT_EQ(run(4, 3,
+                {8, 2, 2, 3,  //
+                 2, 2, 2, 3,  //
+                 2, 2, 3, 3},
+                3, &count),
+            (std::vector<int32_t>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1, 1}));
+  EXPECT_EQ(count, 2);
+  // A small fragment merged into a small fragment ends in the large one before both.
+  EXPECT_EQ(run(6, 2,
+                {1, 1, 1, 2, 3, 1,  //
+                 1, 1, 1, 1, 1, 1},
+                3, &count),
+            (std::vector<int32_t>{0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0}));
+  EXPECT_EQ(count, 1);
+  // min_size 0 keeps every component; in-place operation.
+  std::vector<int32_t> labels{4, 7, 4, 4, 7, 4};
+  EXPECT_EQ(FastSlicEnforceConnectivity(3, 2, labels.data(), 3, 0.0, labels.data(), 3), 3);
+  EXPECT_EQ(labels, (std::vector<int32_t>{0, 1, 2, 0, 1, 2}));
 }
 
 // Not an assertion: prints the cost of the iteration count on a 2000x1500 textured image with 2 threads.
@@ -411,14 +690,16 @@ TEST(SuperpixelsTest, ThroughputReport) {
   DepthMap depth;
   MakeTextured(2000, 1500, 5, &image, &depth);
   tbb::global_control limit(tbb::global_control::max_allowed_parallelism, 2);
-  for (int iterations : {10, 4, 2}) {
+  for (const auto& [algorithm, iterations] : std::vector<std::pair<std::string, int>>{
+           {"slico", 10}, {"slico", 4}, {"slico", 2}, {"fast", 4}, {"fast", 2}}) {
     SuperpixelOptions options;
+    options.algorithm = algorithm;
     options.iterations = iterations;
     const auto start = std::chrono::steady_clock::now();
     const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("[ throughput ] slico, iterations %2d: %.2f Mpx/s (%.3f s, %zu clusters, 2 threads)\n", iterations,
-                image.num_pixels() / seconds / 1e6, seconds, map.clusters.size());
+    std::printf("[ throughput ] %-5s, iterations %2d: %6.2f Mpx/s (%.3f s, %zu clusters, 2 threads)\n",
+                algorithm.c_str(), iterations, image.num_pixels() / seconds / 1e6, seconds, map.clusters.size());
   }
 }
 

@@ -31,7 +31,13 @@ for s in "${scales[@]}"; do
   fi
   out="$block/out_bench"
   rm -rf "$out"
-  sed -e "s|^  dir: .*|  dir: \"out_bench\"|" "$block/sacfuse.yaml" > "$block/bench.yaml"
+  # Today's defaults for everything but the paths (the block's own sacfuse.yaml pins the defaults of its day).
+  gsd=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['gsd_m'])" "$block/metadata.json")
+  cat > "$block/bench.yaml" <<YAML
+input: {path: "$block"}
+output: {dir: "$out"}
+evaluation: {reference: "$block/reference.las", mask: "$block/eval_mask.png", gsd_m: $gsd}
+YAML
   echo "== fusing $block" >&2
   /usr/bin/time -v "$sacfuse" run "$block/bench.yaml" > "$block/bench.log" 2> "$block/bench.time"
   rows+=("$(python3 - "$block" <<'PY'
