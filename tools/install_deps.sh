@@ -26,7 +26,43 @@ if [ ${#missing[@]} -gt 0 ]; then
   echo "[install_deps] installing: ${missing[*]}"
   export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -qq
+  UPDATED=1
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
   echo "[install_deps] all packages present"
+fi
+
+# Optional, benchmarks only (tools/bench, `sacfuse colmap-fusion`, tools/bench/compare_colmap.sh): COLMAP's
+# stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports. Building and the
+# test suite do not need them (the COLMAP test skips without it), so a package the archive lacks (colmap is in
+# Debian main for amd64/arm64 but not on every architecture or derivative) or a failed install only warns.
+OPTIONAL_PKGS=(
+  colmap                   # COLMAP 3.8 (CPU build): stereo_fusion, the comparison of issue 4
+  time                     # /usr/bin/time -v: wall time and peak RSS of `sacfuse run` in compare_colmap.sh
+  jq                       # reading run_report.json / eval.json in compare_colmap.sh
+)
+if [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
+  not_installed=()
+  for p in "${OPTIONAL_PKGS[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || not_installed+=("$p")
+  done
+  if [ ${#not_installed[@]} -gt 0 ] && [ "${UPDATED:-0}" != "1" ]; then
+    $SUDO apt-get update -qq || true
+  fi
+  optional_missing=()
+  for p in ${not_installed[@]+"${not_installed[@]}"}; do
+    if apt-cache show "$p" >/dev/null 2>&1; then
+      optional_missing+=("$p")
+    else
+      echo "[install_deps] optional package $p is not available here; skipping it (only benchmarks need it)"
+    fi
+  done
+  if [ ${#optional_missing[@]} -gt 0 ]; then
+    echo "[install_deps] installing optional benchmark packages: ${optional_missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    if ! $SUDO apt-get install -y -qq --no-install-recommends "${optional_missing[@]}"; then
+      echo "[install_deps] WARNING: could not install ${optional_missing[*]}; benchmarks against COLMAP will" \
+           "skip or fail, everything else works (set SACFUSE_SKIP_OPTIONAL=1 to skip this step)" >&2
+    fi
+  fi
 fi

@@ -18,6 +18,7 @@ int Main(int argc, char** argv) {
   AddMergeCommand(app, &exit_code);
   AddSimulateCommand(app, &exit_code);
   AddEvalCommand(app, &exit_code);
+  AddColmapFusionCommand(app, &exit_code);
   AddVersionCommand(app, &exit_code);
   try {
     app.parse(argc, argv);
