@@ -1,5 +1,7 @@
 #include "tools/bench/colmap_fusion.h"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <deque>
@@ -78,18 +80,44 @@ std::string RequireColmapBinary(const std::string& colmap) {
   return path;
 }
 
+std::pair<std::string, std::string> ParseStereoFusionOption(const std::string& text) {
+  const size_t eq = text.find('=');
+  const std::string name = eq == std::string::npos ? "" : text.substr(0, eq);
+  const std::string value = eq == std::string::npos ? "" : text.substr(eq + 1);
+  const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+  if (!plain || value.empty()) {
+    throw ConfigError("StereoFusion option \"" + text + "\": expected NAME=VALUE with NAME an option of `colmap "
+                      "stereo_fusion -h` without its \"StereoFusion.\" prefix, e.g. max_normal_error=180");
+  }
+  return {name, value};
+}
+
 std::vector<std::string> StereoFusionCommand(const ColmapFusionRequest& request, const std::string& colmap_path,
                                              const std::string& workspace, const std::string& ply_path) {
-  return {colmap_path,
-          "stereo_fusion",
-          "--workspace_path", workspace,
-          "--workspace_format", "COLMAP",
-          "--input_type", request.input_type,
-          "--output_path", ply_path,
-          "--StereoFusion.num_threads", std::to_string(request.threads > 0 ? request.threads : -1),
-          "--StereoFusion.cache_size", Number(request.memory_gb),
-          "--StereoFusion.use_cache", request.use_cache ? "1" : "0",
-          "--log_to_stderr", "1"};  // glog messages into our log instead of files in /tmp
+  std::vector<std::pair<std::string, std::string>> options = {
+      {"num_threads", std::to_string(request.threads > 0 ? request.threads : -1)},
+      {"cache_size", Number(request.memory_gb)},
+      {"use_cache", request.use_cache ? "1" : "0"}};
+  for (const auto& [name, value] : request.stereo_fusion_options) {
+    auto same = std::find_if(options.begin(), options.end(), [&](const auto& o) { return o.first == name; });
+    if (same != options.end()) {
+      same->second = value;
+    } else {
+      options.emplace_back(name, value);
+    }
+  }
+  std::vector<std::string> argv = {colmap_path,       "stereo_fusion",   "--workspace_path", workspace,
+                                   "--workspace_format", "COLMAP",       "--input_type",     request.input_type,
+                                   "--output_path",    ply_path};
+  for (const auto& [name, value] : options) {
+    argv.push_back("--StereoFusion." + name);
+    argv.push_back(value);
+  }
+  argv.push_back("--log_to_stderr");  // glog messages into our log instead of files in /tmp
+  argv.push_back("1");
+  return argv;
 }
 
 ColmapFusionResult RunColmapFusion(const ColmapFusionRequest& request) {

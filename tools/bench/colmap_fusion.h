@@ -12,6 +12,7 @@
 // Scoring is the caller's (tools/cli uses the same RunEvaluation as `sacfuse run`).
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/las_writer.h"
@@ -29,7 +30,14 @@ struct ColmapFusionRequest {
   double memory_gb = 4.0;                // -> StereoFusion.cache_size (GB; only used with use_cache)
   bool use_cache = false;                // StereoFusion.use_cache: bounded memory, but single-threaded in 3.8
   LasWriterOptions las;                  // LAS version and scale as the job's output.* (offset: the shift's)
+  // More StereoFusion options as (name, value), e.g. ("max_normal_error", "180") -> --StereoFusion.max_normal_error
+  // 180; a name given here replaces the value above (num_threads, cache_size, use_cache).
+  std::vector<std::pair<std::string, std::string>> stereo_fusion_options;
 };
+
+// "NAME=VALUE" -> (NAME, VALUE); throws ConfigError unless NAME is a plain option name (letters, digits, _) and
+// VALUE is not empty.
+std::pair<std::string, std::string> ParseStereoFusionOption(const std::string& text);
 
 struct ColmapFusionResult {
   std::string colmap_path;               // the binary that ran

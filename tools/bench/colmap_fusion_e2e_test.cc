@@ -44,7 +44,8 @@ TEST_F(ColmapFusionEndToEndTest, FailingColmapIsAFailedRunShowingItsLog) {
   std::string out;
   const fs::path dest = Dir() / "fake";
   EXPECT_EQ(RunCommand(SacfuseBinary() + " colmap-fusion " + ShellQuote(Block() / "sacfuse.yaml") + " --colmap " +
-                           ShellQuote(fake) + " --out " + ShellQuote(dest) + " --threads 3",
+                           ShellQuote(fake) + " --out " + ShellQuote(dest) +
+                           " --threads 3 --stereo-fusion max_normal_error=180",
                        &out),
             1)
       << out;
@@ -55,7 +56,15 @@ TEST_F(ColmapFusionEndToEndTest, FailingColmapIsAFailedRunShowingItsLog) {
   EXPECT_NE(log.find("stereo_fusion --workspace_path"), std::string::npos) << log;
   EXPECT_NE(log.find("--StereoFusion.num_threads 3"), std::string::npos) << log;
   EXPECT_NE(log.find("--StereoFusion.cache_size 4"), std::string::npos) << log;  // resources.memory_gb
+  EXPECT_NE(log.find("--StereoFusion.max_normal_error 180"), std::string::npos) << log;
   EXPECT_TRUE(fs::is_symlink(dest / "workspace" / "stereo"));
+  // A malformed extra option is a command-line error.
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " colmap-fusion " + ShellQuote(Block() / "sacfuse.yaml") + " --colmap " +
+                           ShellQuote(fake) + " --out " + ShellQuote(dest) + " --stereo-fusion max_normal_error",
+                       &out),
+            2)
+      << out;
+  EXPECT_NE(out.find("NAME=VALUE"), std::string::npos) << out;
   EXPECT_FALSE(fs::exists(dest / "fused.las"));
 }
 

@@ -20,6 +20,9 @@ std::string ColmapFusionToJson(const ColmapFusionRequest& request, const ColmapF
                   {"cache_size_gb", request.memory_gb},
                   {"use_cache", request.use_cache},
                   {"input_type", request.input_type}};
+  nlohmann::json extra = nlohmann::json::object();
+  for (const auto& [name, value] : request.stereo_fusion_options) extra[name] = value;
+  j["options"]["stereo_fusion"] = extra;
   j["input_workspace"] = request.workspace;
   j["shifted_workspace"] = result.workspace.path;
   j["offset"] = {result.workspace.offset.x(), result.workspace.offset.y(), result.workspace.offset.z()};

@@ -21,8 +21,8 @@
 #   F1                    density-normalised F1 (%) from each run's eval.json, scored identically.
 #
 # Environment: SACFUSE (default: build/bin/sacfuse of this checkout, else sacfuse on PATH), COLMAP (default colmap),
-# COLMAP_ARGS (more options for `sacfuse colmap-fusion`, e.g. "--use-cache": COLMAP keeps at most
-# resources.memory_gb of maps in memory, and then fuses on one thread).
+# COLMAP_ARGS (more options for `sacfuse colmap-fusion`: "--use-cache" keeps at most resources.memory_gb of maps in
+# memory, and COLMAP then fuses on one thread; "--stereo-fusion max_normal_error=180" sets any StereoFusion option).
 # Needs /usr/bin/time (Debian: time) and jq; tools/install_deps.sh installs both with colmap.
 set -euo pipefail
 
@@ -105,7 +105,8 @@ RUN_REPORT=$OUT/sacfuse/run_report.json
 COLMAP_JSON=$OUT/colmap/colmap_fusion.json
 GSD=$(jq -r '.evaluation.gsd_m // 0.1' "$COLMAP_JSON")
 METHOD=$(jq -r '.method' "$RUN_REPORT")
-C_METHOD="COLMAP stereo_fusion$(jq -r 'if .options.use_cache then " (use_cache, \(.options.cache_size_gb) GB)" else "" end' "$COLMAP_JSON")"
+C_METHOD="COLMAP stereo_fusion$(jq -r '[(if .options.use_cache then "use_cache, \(.options.cache_size_gb) GB" else empty end),
+  ((.options.stereo_fusion // {}) | to_entries[] | "\(.key)=\(.value)")] | if length > 0 then " (" + join(", ") + ")" else "" end' "$COLMAP_JSON")"
 
 S_WALL=$(jq -r '.wall_seconds' "$RUN_REPORT");  C_WALL=$(jq -r '.wall_s' "$COLMAP_JSON")
 S_RSS=$(jq -r '.peak_rss_mib' "$RUN_REPORT");   C_RSS=$(jq -r '.peak_rss_mib' "$COLMAP_JSON")

@@ -3,6 +3,8 @@
 // comparison with COLMAP). The work is in tools/bench/colmap_fusion.h.
 #include <filesystem>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
@@ -24,6 +26,7 @@ struct ColmapFusionArgs {
   std::string colmap = "colmap";
   int threads = -1;     // -1 = resources.threads
   bool use_cache = false;
+  std::vector<std::string> stereo_fusion;  // NAME=VALUE
 };
 
 int ColmapFusionCommand(const ColmapFusionArgs& args) {
@@ -40,6 +43,9 @@ int ColmapFusionCommand(const ColmapFusionArgs& args) {
     request.threads = args.threads >= 0 ? args.threads : config.resources.threads;
     request.memory_gb = config.resources.memory_gb;
     request.use_cache = args.use_cache;
+    for (const std::string& option : args.stereo_fusion) {
+      request.stereo_fusion_options.push_back(ParseStereoFusionOption(option));
+    }
     request.las.version_minor = config.output.las_version == "1.2" ? 2 : 4;
     request.las.scale_m = config.output.scale_m;
     RequireColmapBinary(request.colmap);  // before any output is written
@@ -91,6 +97,9 @@ void AddColmapFusionCommand(CLI::App& app, int* exit_code) {
   cmd->add_flag("--use-cache", args->use_cache,
                 "StereoFusion.use_cache 1: keep at most resources.memory_gb of maps in memory (COLMAP 3.8 then "
                 "fuses on one thread); default 0 loads every map, as COLMAP does by default");
+  cmd->add_option("--stereo-fusion", args->stereo_fusion,
+                  "More COLMAP StereoFusion options, NAME=VALUE, repeatable (e.g. max_normal_error=180 for "
+                  "--StereoFusion.max_normal_error 180); overrides the values above");
   cmd->callback([args, exit_code] { *exit_code = ColmapFusionCommand(*args); });
 }
 
