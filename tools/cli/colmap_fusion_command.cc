@@ -57,14 +57,8 @@ int ColmapFusionCommand(const ColmapFusionArgs& args) {
     ColmapFusionScoring scoring;
     EvalReport report;
     if (!config.evaluation.reference.empty()) {
-      EvalRequest eval;  // exactly what `sacfuse run` asks for
-      eval.result_las = result.las_path;
-      eval.reference_las = config.evaluation.reference;
-      eval.mask_png = config.evaluation.mask;
-      eval.gsd_m = config.evaluation.gsd_m;
-      eval.tau_gsd = config.evaluation.tau_gsd;
-      eval.align = config.evaluation.align;
-      eval.json_path = (std::filesystem::path(request.out_dir) / "eval.json").string();
+      const EvalRequest eval = EvalRequestFromConfig(  // exactly what `sacfuse run` asks for
+          config, result.las_path, (std::filesystem::path(request.out_dir) / "eval.json").string());
       report = RunEvaluation(eval, std::cout);
       scoring.report = &report;
       scoring.reference = eval.reference_las;

@@ -10,6 +10,20 @@
 
 namespace sacfuse::cli {
 
+EvalRequest EvalRequestFromConfig(const JobConfig& config, const std::string& result_las,
+                                  const std::string& json_path) {
+  EvalRequest request;
+  request.result_las = result_las;
+  request.reference_las = config.evaluation.reference;
+  request.mask_png = config.evaluation.mask;
+  request.gsd_m = config.evaluation.gsd_m;
+  request.tau_gsd = config.evaluation.tau_gsd;
+  request.align = config.evaluation.align;
+  request.json_path = json_path;
+  request.max_result_points = 0.5 * config.resources.memory_gb * (1 << 30) / 72.0;
+  return request;
+}
+
 EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out) {
   EvalOptions options;
   options.gsd_m = request.gsd_m;

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "config/job_config.h"
 #include "tools/eval/eval.h"
 
 namespace sacfuse::cli {
@@ -19,6 +20,12 @@ struct EvalRequest {
   std::string json_path;                  // "" = no JSON
   double max_result_points = 0;           // score every k-th point beyond this many (0 = all; EvalOptions)
 };
+
+// The scoring a job config asks for (evaluation.*), of `result_las`, with its JSON at `json_path`; clouds too
+// large for half of resources.memory_gb (~72 bytes per scored point, measured) are scored on every k-th point.
+// Shared by `run` and `colmap-fusion`, so both score alike.
+EvalRequest EvalRequestFromConfig(const JobConfig& config, const std::string& result_las,
+                                  const std::string& json_path);
 
 // Prints the table and a one-line F1 summary to `out`; writes JSON when asked; returns the report. Throws on bad
 // input.

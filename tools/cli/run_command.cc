@@ -93,16 +93,8 @@ int RunCommand(const RunArgs& args) {
               << summary.views.size() << " views, method " << summary.method << ")\n";
     PrintSourceViewSummary(summary, std::cout);
     if (!config.evaluation.reference.empty()) {
-      EvalRequest request;
-      request.result_las = summary.las_path;
-      request.reference_las = config.evaluation.reference;
-      request.mask_png = config.evaluation.mask;
-      request.gsd_m = config.evaluation.gsd_m;
-      request.tau_gsd = config.evaluation.tau_gsd;
-      request.align = config.evaluation.align;
-      request.json_path = (std::filesystem::path(config.output.dir) / "eval.json").string();
-      // Scoring holds ~72 bytes per result point (measured): half the budget bounds how many are scored.
-      request.max_result_points = 0.5 * config.resources.memory_gb * (1 << 30) / 72.0;
+      const EvalRequest request = EvalRequestFromConfig(
+          config, summary.las_path, (std::filesystem::path(config.output.dir) / "eval.json").string());
       RunEvaluation(request, std::cout);
     }
     return kExitOk;
