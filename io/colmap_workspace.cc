@@ -228,6 +228,24 @@ DepthMap ColmapWorkspace::ReadDepthMap(const View& view) const {
   return ReadDenseForView(DepthMapPath(view), view, 1, "depth map");
 }
 
+DepthRasterSize ColmapWorkspace::DepthSize(const View& view) const {
+  const ColmapArrayShape shape = ReadColmapArrayShape(DepthMapPath(view));
+  return {shape.width, shape.height};
+}
+
+DepthMap ColmapWorkspace::ReadDepthWindow(const View& view, const PixelWindow& window) const {
+  return ReadColmapArrayWindow(DepthMapPath(view), window);
+}
+
+std::vector<double> ColmapWorkspace::SceneHeights() const {
+  std::vector<double> z;
+  z.reserve(model_.points3D.size());
+  for (const auto& [id, p] : model_.points3D) {
+    if (std::isfinite(p.xyz.z())) z.push_back(p.xyz.z());
+  }
+  return z;
+}
+
 NormalMap ColmapWorkspace::ReadNormalMap(const View& view) const {
   return ReadDenseForView(NormalMapPath(view), view, 3, "normal map");
 }

@@ -11,35 +11,41 @@
 #include "core/raster.h"
 #include "core/view.h"
 #include "io/colmap_model.h"
+#include "io/depth_block.h"
 
 namespace sacfuse {
 
 enum class ColmapDepthType { kGeometric, kPhotometric };
 
-class ColmapWorkspace {
+class ColmapWorkspace : public DepthBlock {
  public:
   // Reads the sparse model and fusion.cfg. Views are numbered 0..n-1 in fusion.cfg order (else images order).
   // Cameras must be PINHOLE or SIMPLE_PINHOLE, or another model whose distortion parameters are all zero.
   ColmapWorkspace(const std::string& dir, ColmapDepthType depth_type);
 
   const std::string& dir() const { return dir_; }
-  const std::vector<View>& views() const { return views_; }
+  const std::string& source() const override { return dir_; }
+  const std::vector<View>& views() const override { return views_; }
   const ColmapModel& model() const { return model_; }
 
   std::string ImagePath(const View& view) const;
-  std::string DepthMapPath(const View& view) const;
+  std::string DepthMapPath(const View& view) const override;
   std::string NormalMapPath(const View& view) const;
 
   // Throws InputError naming the file (and the view) on missing, corrupt or mis-sized data.
-  DepthMap ReadDepthMap(const View& view) const;
+  DepthRasterSize DepthSize(const View& view) const override;
+  DepthMap ReadDepthMap(const View& view) const override;
+  DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override;
   NormalMap ReadNormalMap(const View& view) const;
-  RgbImage ReadImage(const View& view) const;
+  RgbImage ReadImage(const View& view) const override;
+  // z of the sparse model's points.
+  std::vector<double> SceneHeights() const override;
 
   // Dense-matching consistency (stereo/consistency_graphs/<name>.<type>.bin), when the input has it. COLMAP's
   // image indices (images order of the sparse model) are mapped to view indices; images not used are dropped.
   std::string ConsistencyGraphPath(const View& view) const;
-  bool HasConsistencyGraph(const View& view) const;
-  ConsistencyGraph ReadConsistencyGraph(const View& view) const;
+  bool HasConsistencyGraph(const View& view) const override;
+  ConsistencyGraph ReadConsistencyGraph(const View& view) const override;
 
  private:
   std::string dir_;

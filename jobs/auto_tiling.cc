@@ -53,10 +53,10 @@ int EffectiveThreads(const JobConfig& config) {
   return std::max(1u, std::thread::hardware_concurrency());
 }
 
-TilingDecision DecideTiling(const JobConfig& config, const ColmapWorkspace& workspace) {
+TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
   TilingDecision d;
   d.budget_bytes = MemoryBudgetBytes(config.resources.memory_gb);
-  const BlockPixels pixels = MeasureBlockPixels(workspace);
+  const BlockPixels pixels = MeasureBlockPixels(input);
   d.untiled_bytes = UntiledSacBytes(pixels);
   const int threads = EffectiveThreads(config);
   const uint64_t pool = TileMemoryPoolBytes(d.budget_bytes);
@@ -100,7 +100,7 @@ TilingDecision DecideTiling(const JobConfig& config, const ColmapWorkspace& work
     for (const double size : candidates) {
       TilingOptions options = config.tiling;
       options.tile_size_m = size;
-      const TilePlan plan = BuildTilePlan(workspace, options);
+      const TilePlan plan = BuildTilePlan(input, options);
       size_t tiles = 0;
       const uint64_t largest = LargestTileBytes(plan, &tiles);
       const int parallel = static_cast<int>(std::min<size_t>(static_cast<size_t>(wanted), std::max<size_t>(tiles, 1)));
@@ -125,8 +125,8 @@ TilingDecision DecideTiling(const JobConfig& config, const ColmapWorkspace& work
                                 GiB(d.budget_bytes - std::min(d.budget_bytes, pool))));
 }
 
-JobConfig ResolveTiling(const JobConfig& config, const ColmapWorkspace& workspace, TilingDecision* decision) {
-  const TilingDecision d = DecideTiling(config, workspace);
+JobConfig ResolveTiling(const JobConfig& config, const DepthBlock& input, TilingDecision* decision) {
+  const TilingDecision d = DecideTiling(config, input);
   spdlog::info("tiling: {}", d.reason);
   JobConfig out = config;
   out.tiling.tile_size_m = d.tiled ? d.tile_size_m : 0.0;

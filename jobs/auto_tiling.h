@@ -7,7 +7,7 @@
 #include <string>
 
 #include "config/job_config.h"
-#include "io/colmap_workspace.h"
+#include "io/depth_block.h"
 
 namespace sacfuse {
 
@@ -28,9 +28,9 @@ int EffectiveThreads(const JobConfig& config);
 // Decides untiled vs tiled and the tile size. Explicit tile sizes are kept (tiled when > 0); the union method is
 // always untiled. Throws ConfigError when even small tiles exceed the budget, or when dense correspondences
 // (untiled only) do not fit.
-TilingDecision DecideTiling(const JobConfig& config, const ColmapWorkspace& workspace);
+TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input);
 
 // `config` with tiling.tile_size_m set to the decision (0 = untiled). Logs the decision once.
-JobConfig ResolveTiling(const JobConfig& config, const ColmapWorkspace& workspace, TilingDecision* decision = nullptr);
+JobConfig ResolveTiling(const JobConfig& config, const DepthBlock& input, TilingDecision* decision = nullptr);
 
 }  // namespace sacfuse

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "io/colmap_array.h"
 
 namespace sacfuse {
 
@@ -19,11 +18,11 @@ uint64_t BlockPixels::total_image_pixels() const {
   return n;
 }
 
-BlockPixels MeasureBlockPixels(const ColmapWorkspace& workspace) {
+BlockPixels MeasureBlockPixels(const DepthBlock& input) {
   BlockPixels out;
-  for (const View& view : workspace.views()) {
-    const ColmapArrayShape shape = ReadColmapArrayShape(workspace.DepthMapPath(view));
-    out.depth_pixels.push_back(static_cast<uint64_t>(shape.width) * shape.height);
+  for (const View& view : input.views()) {
+    const DepthRasterSize size = input.DepthSize(view);
+    out.depth_pixels.push_back(static_cast<uint64_t>(size.width) * size.height);
     out.image_pixels.push_back(static_cast<uint64_t>(view.camera.width) * view.camera.height);
   }
   return out;

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "io/colmap_workspace.h"
+#include "io/depth_block.h"
 
 namespace sacfuse {
 
@@ -34,7 +34,7 @@ struct BlockPixels {
   uint64_t total_depth_pixels() const;
   uint64_t total_image_pixels() const;
 };
-BlockPixels MeasureBlockPixels(const ColmapWorkspace& workspace);
+BlockPixels MeasureBlockPixels(const DepthBlock& input);
 
 // Byte budget of resources.memory_gb.
 uint64_t MemoryBudgetBytes(double memory_gb);

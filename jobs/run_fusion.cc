@@ -10,7 +10,8 @@
 #include "core/backproject.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
-#include "io/colmap_workspace.h"
+#include "io/depth_block.h"
+#include "jobs/open_input.h"
 #include "io/las_writer.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/memory_model.h"
@@ -128,15 +129,15 @@ std::string CacheDir(const JobConfig& config) {
 }
 
 // Tiled SAC: per-tile files, resume, merge (jobs/tiled_run.h).
-void RunTiled(const JobConfig& config, const ColmapWorkspace& workspace, const RunProgress& progress,
+void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
               const std::vector<std::string>& rerun_tiles, RunSummary* summary) {
-  const TilePlan plan = SharedTilePlan(config, workspace);
+  const TilePlan plan = SharedTilePlan(config, input);
   CheckRerunTiles(rerun_tiles, &plan);
   spdlog::info("tiled SAC: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
                plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
   const TiledRunOutcome tiled =
-      RunTiledSac(config, workspace, plan, rerun_tiles, MakeLasOptions(config.output), summary->las_path, progress);
+      RunTiledSac(config, input, plan, rerun_tiles, MakeLasOptions(config.output), summary->las_path, progress);
   SetSacSummary(tiled.block, summary);
   summary->tiles_run = tiled.tiles_with_views;
   summary->tiles_computed = tiled.tiles_computed;
@@ -154,23 +155,23 @@ void RunTiled(const JobConfig& config, const ColmapWorkspace& workspace, const R
 }
 
 // Untiled SAC or the union, streamed into one LAS writer.
-void RunUntiled(const JobConfig& config, const ColmapWorkspace& workspace, const RunProgress& progress,
+void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
                 RunSummary* summary) {
-  const auto& views = workspace.views();
+  const auto& views = input.views();
   LasWriter writer(summary->las_path, MakeLasOptions(config.output));
   CountingSink counting(writer);
   if (config.fusion.method == "union") {
     spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
     if (config.tiling.tile_size_m > 0) spdlog::info("tiling applies to sac only; the union runs untiled");
     for (size_t i = 0; i < views.size(); ++i) {
-      const DepthMap depth = workspace.ReadDepthMap(views[i]);
-      const RgbImage image = workspace.ReadImage(views[i]);
+      const DepthMap depth = input.ReadDepthMap(views[i]);
+      const RgbImage image = input.ReadImage(views[i]);
       summary->views[i].input_pixels = BackprojectDepthMap(views[i], depth, &image, counting);
       summary->input_points += summary->views[i].input_pixels;
       if (progress) progress("fuse", i + 1, views.size());
     }
   } else {
-    SetSacSummary(FuseWorkspaceWithSac(workspace, config.fusion.sac, CacheDir(config), counting, progress),
+    SetSacSummary(FuseWorkspaceWithSac(input, config.fusion.sac, CacheDir(config), counting, progress),
                   summary);
   }
   writer.Close();
@@ -207,13 +208,11 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.report_path = (std::filesystem::path(config.output.dir) / "run_report.json").string();
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
-  const ColmapWorkspace workspace(config.input.path, config.input.depth_type == "photometric"
-                                                         ? ColmapDepthType::kPhotometric
-                                                         : ColmapDepthType::kGeometric);
-  const auto& views = workspace.views();
-  if (views.empty()) throw InputError(config.input.path, "the workspace has no images to fuse");
+  const std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse");
+  const DepthBlock& input = *block;
+  const auto& views = input.views();
   TilingDecision decision;
-  config = ResolveTiling(given, workspace, &decision);
+  config = ResolveTiling(given, input, &decision);
   const ThreadLimit thread_limit(EffectiveThreads(config));
   summary.threads = EffectiveThreads(config);
   summary.tile_size_m = config.tiling.tile_size_m;
@@ -234,9 +233,9 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
                  config.fusion.sac.unary, config.fusion.sac.correspondence);
   }
   if (tiled) {
-    RunTiled(config, workspace, progress, rerun_tiles, &summary);
+    RunTiled(config, input, progress, rerun_tiles, &summary);
   } else {
-    RunUntiled(config, workspace, progress, &summary);
+    RunUntiled(config, input, progress, &summary);
   }
 
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

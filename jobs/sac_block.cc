@@ -9,11 +9,11 @@
 
 namespace sacfuse {
 
-SacBlockResult FuseWorkspaceWithSac(const ColmapWorkspace& workspace, const SacOptions& options,
+SacBlockResult FuseWorkspaceWithSac(const DepthBlock& input, const SacOptions& options,
                                     const std::string& superpixel_cache_dir, PointSink& sink,
                                     const SacProgress& progress) {
   ValidateSacOptions(options);
-  const auto& views = workspace.views();
+  const auto& views = input.views();
   std::vector<DepthMap> depths(views.size());
   std::vector<RgbImage> images(views.size());
   std::vector<SuperpixelMap> superpixels(views.size());
@@ -22,20 +22,20 @@ SacBlockResult FuseWorkspaceWithSac(const ColmapWorkspace& workspace, const SacO
   SacBlockResult result;
   const auto start = std::chrono::steady_clock::now();
   for (size_t i = 0; i < views.size(); ++i) {
-    depths[i] = workspace.ReadDepthMap(views[i]);
-    images[i] = workspace.ReadImage(views[i]);
+    depths[i] = input.ReadDepthMap(views[i]);
+    images[i] = input.ReadImage(views[i]);
     bool computed = false;
     superpixels[i] = LoadOrComputeSuperpixels(superpixel_cache_dir, views[i].name, images[i], depths[i],
                                               options.superpixels, &computed);
     result.superpixels_computed += computed ? 1 : 0;
     if (dense) {
-      if (!workspace.HasConsistencyGraph(views[i])) {
-        throw InputError(workspace.ConsistencyGraphPath(views[i]),
+      if (!input.HasConsistencyGraph(views[i])) {
+        throw InputError(input.source(),
                          "fusion.correspondence = dense needs the dense matcher's consistency graphs, and image " +
-                             views[i].name + " has none (COLMAP: --PatchMatchStereo.write_consistency_graph 1); use "
-                             "reprojection or proximity");
+                             views[i].name + " has none (COLMAP: --PatchMatchStereo.write_consistency_graph 1, in "
+                             "stereo/consistency_graphs/); use reprojection or proximity");
       }
-      graphs[i] = workspace.ReadConsistencyGraph(views[i]);
+      graphs[i] = input.ReadConsistencyGraph(views[i]);
     }
     if (progress) progress("load + superpixels", i + 1, views.size());
   }

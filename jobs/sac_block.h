@@ -6,7 +6,7 @@
 
 #include "core/point.h"
 #include "core/sac_fusion.h"
-#include "io/colmap_workspace.h"
+#include "io/depth_block.h"
 
 namespace sacfuse {
 
@@ -16,7 +16,7 @@ struct SacBlockResult {
   double superpixel_seconds = 0.0;
 };
 
-SacBlockResult FuseWorkspaceWithSac(const ColmapWorkspace& workspace, const SacOptions& options,
+SacBlockResult FuseWorkspaceWithSac(const DepthBlock& input, const SacOptions& options,
                                     const std::string& superpixel_cache_dir, PointSink& sink,
                                     const SacProgress& progress = {});
 

@@ -11,9 +11,9 @@
 #include "config/result_settings.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
-#include "io/colmap_array.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/memory_model.h"
+#include "jobs/open_input.h"
 #include "jobs/version.h"
 
 namespace sacfuse {
@@ -27,19 +27,11 @@ double Percentile(std::vector<double>& values, double q) {
 
 nlohmann::json BoxJson(const Bounds2d& b) { return {b.min.x(), b.min.y(), b.max.x(), b.max.y()}; }
 
-ColmapDepthType DepthType(const JobConfig& config) {
-  return config.input.depth_type == "photometric" ? ColmapDepthType::kPhotometric : ColmapDepthType::kGeometric;
-}
 
 }  // namespace
 
-void BlockHeightRange(const ColmapModel& model, const TilingOptions& options, double* z_min_m, double* z_max_m,
+void BlockHeightRange(std::vector<double> z, const TilingOptions& options, double* z_min_m, double* z_max_m,
                       std::string* source) {
-  std::vector<double> z;
-  z.reserve(model.points3D.size());
-  for (const auto& [id, p] : model.points3D) {
-    if (std::isfinite(p.xyz.z())) z.push_back(p.xyz.z());
-  }
   if (z.empty()) {
     *z_min_m = options.z_min_m;
     *z_max_m = options.z_max_m;
@@ -51,16 +43,16 @@ void BlockHeightRange(const ColmapModel& model, const TilingOptions& options, do
   *source = "sparse points";
 }
 
-TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& options) {
+TilePlan BuildTilePlan(const DepthBlock& input, const TilingOptions& options) {
   ValidateTilingOptions(options);
   double z_min = 0, z_max = 0;
   std::string z_source;
-  BlockHeightRange(workspace.model(), options, &z_min, &z_max, &z_source);
-  const auto& views = workspace.views();
+  BlockHeightRange(input.SceneHeights(), options, &z_min, &z_max, &z_source);
+  const auto& views = input.views();
   Bounds2d area;
   for (const View& view : views) area.Extend(FootprintBounds(view, z_min, z_max));
   if (area.IsEmpty()) {
-    throw InputError(workspace.dir(), "no view's footprint meets the height range [" + std::to_string(z_min) + ", " +
+    throw InputError(input.source(), "no view's footprint meets the height range [" + std::to_string(z_min) + ", " +
                                           std::to_string(z_max) + "] m; cannot plan tiles");
   }
   TilePlan plan(TileGrid(area, options.tile_size_m, options.halo_m));
@@ -70,8 +62,7 @@ TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& op
   plan.z_source = z_source;
   plan.depth_sizes.resize(views.size());
   for (size_t v = 0; v < views.size(); ++v) {
-    const ColmapArrayShape shape = ReadColmapArrayShape(workspace.DepthMapPath(views[v]));
-    plan.depth_sizes[v] = {shape.width, shape.height};
+    plan.depth_sizes[v] = input.DepthSize(views[v]);
   }
   for (const TileIndex& t : plan.grid.Tiles()) {
     PlannedTile tile;
@@ -92,13 +83,13 @@ TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& op
   return plan;
 }
 
-std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace, const std::string& config_hash) {
+std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const std::string& config_hash) {
   nlohmann::json tiles = nlohmann::json::array();
   for (const PlannedTile& t : plan.tiles) {
     nlohmann::json views = nlohmann::json::array();
     for (const TileViewWindow& w : t.views) {
       views.push_back({{"view", w.view},
-                       {"name", workspace.views()[w.view].name},
+                       {"name", input.views()[w.view].name},
                        {"window", {{"row_begin", w.window.row_begin},
                                    {"row_end", w.window.row_end},
                                    {"col_begin", w.window.col_begin},
@@ -127,11 +118,11 @@ std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace,
   return out.dump(2) + "\n";
 }
 
-TilePlan SharedTilePlan(const JobConfig& config, const ColmapWorkspace& workspace, std::string* plan_path) {
-  TilePlan plan = BuildTilePlan(workspace, config.tiling);
+TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, std::string* plan_path) {
+  TilePlan plan = BuildTilePlan(input, config.tiling);
   const std::string hash = ResultSettingsHash(config);
   const std::string path = (std::filesystem::path(config.output.dir) / "plan.json").string();
-  const std::string text = TilePlanJson(plan, workspace, hash);
+  const std::string text = TilePlanJson(plan, input, hash);
   if (plan_path != nullptr) *plan_path = path;
   std::ifstream in(path);
   nlohmann::json existing;
@@ -162,10 +153,9 @@ TilePlan SharedTilePlan(const JobConfig& config, const ColmapWorkspace& workspac
 
 TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
   ValidateJobConfig(given);
-  const ColmapWorkspace workspace(given.input.path, DepthType(given));
-  if (workspace.views().empty()) throw InputError(given.input.path, "the workspace has no images to plan");
-  const JobConfig config = ResolveTiling(given, workspace);
-  return SharedTilePlan(config, workspace, plan_path);
+  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan");
+  const JobConfig config = ResolveTiling(given, *input);
+  return SharedTilePlan(config, *input, plan_path);
 }
 
 }  // namespace sacfuse

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "config/job_config.h"
-#include "io/colmap_workspace.h"
+#include "io/depth_block.h"
 #include "tiling/tile_grid.h"
 #include "tiling/tile_windows.h"
 
@@ -30,10 +30,6 @@ struct PlannedTile {
   uint64_t memory_bytes = 0;           // estimate, TileBytes(window_pixels) (jobs/memory_model.h)
 };
 
-struct DepthRasterSize {
-  int width = 0, height = 0;
-};
-
 struct TilePlan {
   explicit TilePlan(const TileGrid& g) : grid(g) {}
   TileGrid grid;
@@ -46,20 +42,20 @@ struct TilePlan {
 
 // Height range of the block: 2nd..98th percentile of the sparse points' z padded by kSparseHeightPaddingM, or
 // the options' z_min_m/z_max_m when the model has no points. *source names which.
-void BlockHeightRange(const ColmapModel& model, const TilingOptions& options, double* z_min_m, double* z_max_m,
+void BlockHeightRange(std::vector<double> heights_m, const TilingOptions& options, double* z_min_m, double* z_max_m,
                       std::string* source);
 
 // The plan of a workspace (reads only depth-map headers). Throws InputError when no view has a footprint.
-TilePlan BuildTilePlan(const ColmapWorkspace& workspace, const TilingOptions& options);
+TilePlan BuildTilePlan(const DepthBlock& input, const TilingOptions& options);
 
 // JSON text of a plan (view names included; `config_hash`, the config's ResultSettingsHash, when not empty).
-std::string TilePlanJson(const TilePlan& plan, const ColmapWorkspace& workspace, const std::string& config_hash = "");
+std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const std::string& config_hash = "");
 
 // The plan shared by every worker of a job (`run`, `tile`, `merge`, `plan`): when <output.dir>/plan.json exists
 // with the config's hash it is used: the plan is rebuilt (deterministic, headers only) and must equal it, else
 // Error (delete plan.json after changing inputs by hand); otherwise this worker writes it atomically (racing
 // writers produce the same content). *plan_path receives the file.
-TilePlan SharedTilePlan(const JobConfig& config, const ColmapWorkspace& workspace, std::string* plan_path = nullptr);
+TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, std::string* plan_path = nullptr);
 
 // `sacfuse plan`: validates the config, opens the workspace, resolves an automatic tile size (a block that runs
 // untiled gets the one-tile plan) and returns SharedTilePlan.

@@ -6,7 +6,7 @@
 
 #include "config/result_settings.h"
 #include "core/error.h"
-#include "io/colmap_workspace.h"
+#include "jobs/open_input.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/run_fusion.h"
 #include "jobs/thread_limit.h"
@@ -20,19 +20,16 @@ namespace fs = std::filesystem;
 namespace {
 
 // Opens the workspace and resolves an automatic tile size into *resolved; throws ConfigError for untiled jobs.
-ColmapWorkspace OpenTiledWorkspace(const JobConfig& config, JobConfig* resolved) {
+std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* resolved) {
   ValidateJobConfig(config);
   if (config.fusion.method != "sac") throw ConfigError("not a tiled run: tiles need fusion.method sac");
-  ColmapWorkspace workspace(config.input.path, config.input.depth_type == "photometric"
-                                                   ? ColmapDepthType::kPhotometric
-                                                   : ColmapDepthType::kGeometric);
-  if (workspace.views().empty()) throw InputError(config.input.path, "the workspace has no images to fuse");
-  *resolved = ResolveTiling(config, workspace);
+  std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "fuse");
+  *resolved = ResolveTiling(config, *input);
   if (resolved->tiling.tile_size_m <= 0) {
     throw ConfigError("not a tiled run: tiling.tile_size_m = 0 and the whole block fits in resources.memory_gb, so "
                       "it runs untiled (`sacfuse run`); set tiling.tile_size_m > 0 to cut it into tiles");
   }
-  return workspace;
+  return input;
 }
 
 LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
@@ -45,9 +42,9 @@ LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
 
 TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   JobConfig config;
-  const ColmapWorkspace workspace = OpenTiledWorkspace(given, &config);
+  const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config);
   const ThreadLimit thread_limit(EffectiveThreads(config));
-  const TilePlan plan = SharedTilePlan(config, workspace);
+  const TilePlan plan = SharedTilePlan(config, *input);
   const PlannedTile* tile = nullptr;
   for (const PlannedTile& t : plan.tiles) {
     if (t.id == id && !t.views.empty()) tile = &t;
@@ -74,9 +71,9 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   std::error_code ec;
   fs::remove(FusedLasPath(config), ec);  // stale until the tiles are merged again
   try {
-    EnsureTiledSuperpixels(workspace, plan, config.fusion.sac, TileCacheDir(config), {}, tile);
+    EnsureTiledSuperpixels(*input, plan, config.fusion.sac, TileCacheDir(config), {}, tile);
     CheckTileFitsBudget(*tile, config);
-    const TileFusionResult r = ComputeTileFiles(config, workspace, plan, *tile, las, tiles_dir, hash);
+    const TileFusionResult r = ComputeTileFiles(config, *input, plan, *tile, las, tiles_dir, hash);
     out.result = TileWork::kComputed;
     out.points = r.points_in_core;
     spdlog::info("tile {}: {} views, {} points in its core, {} left to neighbours", id, tile->views.size(),
@@ -118,8 +115,8 @@ MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const L
 
 MergeJobOutcome MergeJob(const JobConfig& given) {
   JobConfig config;
-  const ColmapWorkspace workspace = OpenTiledWorkspace(given, &config);
-  const TilePlan plan = SharedTilePlan(config, workspace);
+  const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config);
+  const TilePlan plan = SharedTilePlan(config, *input);
   MergeJobOutcome out;
   out.fused_las_path = FusedLasPath(config);
   out.missing = MissingTiles(config, plan);

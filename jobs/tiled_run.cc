@@ -88,7 +88,7 @@ void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const La
   WriteManifest(tiles_dir, plan, las, ResultSettingsHash(config));
 }
 
-TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
+TileFusionResult ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                                   const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
                                   const std::string& hash, ClusterTableCache* cluster_cache) {
   spdlog::info("computing tile {} (pid {})", tile.id, static_cast<long>(::getpid()));
@@ -98,7 +98,7 @@ TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace
   bool has_las = false;
   {
     LasWriter writer(TileLasPath(tiles_dir, tile.id), las);
-    fused = FuseTile(workspace, plan, tile, config.fusion.sac, TileCacheDir(config), writer, cluster_cache);
+    fused = FuseTile(input, plan, tile, config.fusion.sac, TileCacheDir(config), writer, cluster_cache);
     if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
       writer.Close();
       has_las = true;
@@ -138,7 +138,7 @@ std::vector<std::string> TileIdsWithViews(const TilePlan& plan) {
   return ids;
 }
 
-TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
+TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<std::string>& rerun_ids, LasWriterOptions las_options,
                             const std::string& fused_las_path, const SacProgress& progress) {
   if (config.fusion.sac.correspondence == "dense") {
@@ -187,14 +187,14 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
     fs::remove(fused_las_path, ec);  // stale until the tiles are merged again
     const auto sp_start = std::chrono::steady_clock::now();
     out.block.superpixels_computed =
-        EnsureTiledSuperpixels(workspace, plan, config.fusion.sac, TileCacheDir(config), progress);
+        EnsureTiledSuperpixels(input, plan, config.fusion.sac, TileCacheDir(config), progress);
     out.block.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sp_start).count();
     spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",
-                 out.block.superpixels_computed, workspace.views().size() - out.block.superpixels_computed,
+                 out.block.superpixels_computed, input.views().size() - out.block.superpixels_computed,
                  out.block.superpixel_seconds, todo.size(), out.tiles_with_views);
   }
   SacStats& total = out.block.stats;
-  total.emitted_per_view.assign(workspace.views().size(), 0);
+  total.emitted_per_view.assign(input.views().size(), 0);
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   MemoryAdmission admission(TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   std::mutex mutex;  // guards out, total and progress across tile workers
@@ -220,7 +220,7 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& work
       TileFusionResult r;
       {
         MemoryReservation reservation(admission, tile.memory_bytes);
-        r = ComputeTileFiles(config, workspace, plan, tile, las_options, tiles_dir, hash, &cluster_cache);
+        r = ComputeTileFiles(config, input, plan, tile, las_options, tiles_dir, hash, &cluster_cache);
       }
       std::lock_guard<std::mutex> lock(mutex);
       AddSacStats(r.stats, &total);

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "config/job_config.h"
-#include "io/colmap_workspace.h"
+#include "io/depth_block.h"
 #include "io/las_writer.h"
 #include "jobs/sac_block.h"
 #include "jobs/tile_plan.h"
@@ -54,7 +54,7 @@ void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const La
                          size_t tiles_to_compute);
 // Computes one tile (the caller holds its claim) into <id>.las and <id>.done.json, after clearing its old state;
 // logs "computing tile <id>". Needs the superpixel caches of the tile's views. Throws whatever the tile throws.
-TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
+TileFusionResult ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                                   const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
                                   const std::string& hash, ClusterTableCache* cluster_cache = nullptr);
 
@@ -63,7 +63,7 @@ TileFusionResult ComputeTileFiles(const JobConfig& config, const ColmapWorkspace
 void CheckTileFitsBudget(const PlannedTile& tile, const JobConfig& config);
 
 // `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done.
-TiledRunOutcome RunTiledSac(const JobConfig& config, const ColmapWorkspace& workspace, const TilePlan& plan,
+TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<std::string>& rerun_ids, LasWriterOptions las_options,
                             const std::string& fused_las_path, const SacProgress& progress = {});
 

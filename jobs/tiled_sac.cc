@@ -7,7 +7,6 @@
 
 #include "core/error.h"
 #include "core/colour_resample.h"
-#include "io/colmap_array.h"
 #include "io/colour_raster_io.h"
 #include "io/superpixel_io.h"
 #include "jobs/superpixel_cache.h"
@@ -17,13 +16,13 @@ namespace {
 
 // Computes and caches a view's superpixels and its colours on the depth grid unless both caches exist (then
 // nothing is read).
-bool EnsureViewCaches(const ColmapWorkspace& workspace, const View& view, const DepthRasterSize& size,
+bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRasterSize& size,
                       const SuperpixelOptions& options, const std::string& cache_dir) {
   const bool spx_ok = SuperpixelCacheIsCurrent(cache_dir, view.name, size.width, size.height, options);
   const bool rgb_ok = ColourCacheIsCurrent(cache_dir, view.name, size.width, size.height);
   if (spx_ok && rgb_ok) return false;
-  const DepthMap depth = workspace.ReadDepthMap(view);
-  const RgbImage image = workspace.ReadImage(view);
+  const DepthMap depth = input.ReadDepthMap(view);
+  const RgbImage image = input.ReadImage(view);
   bool computed = false;
   if (!spx_ok) LoadOrComputeSuperpixels(cache_dir, view.name, image, depth, options, &computed);
   if (!rgb_ok && !image.empty()) {
@@ -62,10 +61,10 @@ struct WindowRasters {
   RgbImage image;  // at depth-window resolution; empty = no colours
 };
 
-WindowRasters LoadWindow(const ColmapWorkspace& workspace, const View& view, const DepthRasterSize& size,
+WindowRasters LoadWindow(const DepthBlock& input, const View& view, const DepthRasterSize& size,
                          const PixelWindow& w, const std::string& cache_dir, ClusterTableCache* cluster_cache) {
   WindowRasters out;
-  out.depth = ReadColmapArrayWindow(workspace.DepthMapPath(view), w);
+  out.depth = input.ReadDepthWindow(view, w);
   const std::string spx_path = SuperpixelCachePath(cache_dir, view.name);
   SuperpixelFileInfo info;
   std::vector<int32_t> labels = ReadSuperpixelLabelWindow(spx_path, w, &info);
@@ -135,10 +134,10 @@ void AddSacStats(const SacStats& s, SacStats* total) {
   }
 }
 
-size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
+size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
                               const std::string& superpixel_cache_dir, const SacProgress& progress,
                               const PlannedTile* only_tile) {
-  const auto& views = workspace.views();
+  const auto& views = input.views();
   std::vector<size_t> todo;
   if (only_tile == nullptr) {
     for (size_t v = 0; v < views.size(); ++v) todo.push_back(v);
@@ -148,17 +147,17 @@ size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& 
   size_t computed = 0;
   for (size_t i = 0; i < todo.size(); ++i) {
     const size_t v = todo[i];
-    computed += EnsureViewCaches(workspace, views[v], plan.depth_sizes[v], options.superpixels,
+    computed += EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels,
                                  superpixel_cache_dir) ? 1 : 0;
     if (progress) progress("superpixels", i + 1, todo.size());
   }
   return computed;
 }
 
-TileFusionResult FuseTile(const ColmapWorkspace& workspace, const TilePlan& plan, const PlannedTile& tile,
+TileFusionResult FuseTile(const DepthBlock& input, const TilePlan& plan, const PlannedTile& tile,
                           const SacOptions& options, const std::string& superpixel_cache_dir, PointSink& sink,
                           ClusterTableCache* cluster_cache) {
-  const auto& views = workspace.views();
+  const auto& views = input.views();
   std::vector<WindowRasters> rasters;
   rasters.reserve(tile.views.size());
   std::vector<SacView> sac_views;
@@ -166,7 +165,7 @@ TileFusionResult FuseTile(const ColmapWorkspace& workspace, const TilePlan& plan
   for (const TileViewWindow& tw : tile.views) {
     const View& view = views[tw.view];
     const DepthRasterSize& size = plan.depth_sizes[tw.view];
-    rasters.push_back(LoadWindow(workspace, view, size, tw.window, superpixel_cache_dir, cluster_cache));
+    rasters.push_back(LoadWindow(input, view, size, tw.window, superpixel_cache_dir, cluster_cache));
     WindowRasters& r = rasters.back();
     SacView sv;
     sv.view = view;

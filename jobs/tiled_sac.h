@@ -7,7 +7,7 @@
 
 #include "core/point.h"
 #include "core/sac_fusion.h"
-#include "io/colmap_workspace.h"
+#include "io/depth_block.h"
 #include "jobs/cluster_table_cache.h"
 #include "jobs/sac_block.h"
 #include "jobs/tile_plan.h"
@@ -16,7 +16,7 @@ namespace sacfuse {
 
 // Computes the superpixel and colour caches of every view (only the views of `only_tile` when given) that lacks a current one
 // (nothing is read for the others); returns how many were computed.
-size_t EnsureTiledSuperpixels(const ColmapWorkspace& workspace, const TilePlan& plan, const SacOptions& options,
+size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
                               const std::string& superpixel_cache_dir, const SacProgress& progress = {},
                               const PlannedTile* only_tile = nullptr);
 
@@ -29,7 +29,7 @@ struct TileFusionResult {
 // Runs SAC on one tile (which must have views) and writes the points of its core to `sink`. Needs the
 // superpixel and colour caches (EnsureTiledSuperpixels); reads only the tile's windows of them and of the depth
 // maps. Cluster tables come from `cluster_cache` when given. Throws InputError/Error on unreadable inputs.
-TileFusionResult FuseTile(const ColmapWorkspace& workspace, const TilePlan& plan, const PlannedTile& tile,
+TileFusionResult FuseTile(const DepthBlock& input, const TilePlan& plan, const PlannedTile& tile,
                           const SacOptions& options, const std::string& superpixel_cache_dir, PointSink& sink,
                           ClusterTableCache* cluster_cache = nullptr);
 

@@ -1,0 +1,53 @@
+#pragma once
+// The input of a fusion job, whatever format it came in: the oriented views of a block and, per view, its depth
+// raster (read whole or by window), its image, and what else the format knows (scene heights, dense-matching
+// consistency). Jobs see only this interface; each input format (COLMAP workspace, OpenMVS .dmap files, depth
+// rasters with a camera file) implements it.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/consistency_graph.h"
+#include "core/pixel_window.h"
+#include "core/raster.h"
+#include "core/view.h"
+
+namespace sacfuse {
+
+// Width and height of a view's depth raster, pixels (the depth raster may be smaller than the image: the view's
+// intrinsics are at image resolution and are scaled by the readers of depth pixels).
+struct DepthRasterSize {
+  int width = 0, height = 0;
+};
+
+class DepthBlock {
+ public:
+  virtual ~DepthBlock() = default;
+
+  // What names this input in messages (a folder or file).
+  virtual const std::string& source() const = 0;
+  // Views numbered 0..n-1; views()[i].index == i.
+  virtual const std::vector<View>& views() const = 0;
+
+  // The file holding a view's depth (for messages and cache keys).
+  virtual std::string DepthMapPath(const View& view) const = 0;
+  // Size of a view's depth raster, read from its header only. Throws InputError naming the file and view.
+  virtual DepthRasterSize DepthSize(const View& view) const = 0;
+  // A view's whole depth raster (z in the camera frame, metres; <= 0 or non-finite = invalid).
+  virtual DepthMap ReadDepthMap(const View& view) const = 0;
+  // Rows and columns of `window` only (must fit in the raster); reads no more of the file than it needs to.
+  virtual DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const = 0;
+  // The view's image (RGB, full resolution), or an empty raster when the input has no images (points then get
+  // no colour).
+  virtual RgbImage ReadImage(const View& view) const = 0;
+
+  // Heights (world z, metres) of scene points the input knows besides the depth maps (e.g. sparse tie points),
+  // used to bound the block's height range when planning tiles; empty when the format has none.
+  virtual std::vector<double> SceneHeights() const { return {}; }
+
+  // Dense-matching consistency graphs (which views agree with each pixel), when the input has them.
+  virtual bool HasConsistencyGraph(const View& /*view*/) const { return false; }
+  virtual ConsistencyGraph ReadConsistencyGraph(const View& view) const;
+};
+
+}  // namespace sacfuse

@@ -1,0 +1,55 @@
+// `sacfuse convert CONFIG --to FORMAT --out DIR`: writes the config's input block in another input format
+// (jobs/convert_input.h) and a config `DIR/sacfuse.yaml` that fuses the converted block with the same settings
+// (output under DIR/out).
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include <CLI/CLI.hpp>
+
+#include "config/job_config.h"
+#include "io/atomic_file.h"
+#include "jobs/convert_input.h"
+#include "jobs/open_input.h"
+#include "tools/cli/cli_support.h"
+#include "tools/cli/commands.h"
+
+namespace sacfuse::cli {
+namespace {
+
+struct ConvertArgs {
+  std::string config_path;
+  std::string target;
+  std::string out_dir;
+};
+
+int ConvertCommand(const ConvertArgs& args) {
+  JobConfig config = LoadJobConfig(args.config_path);
+  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "convert");
+  const std::string out_dir = std::filesystem::absolute(args.out_dir).lexically_normal().string();
+  std::filesystem::create_directories(out_dir);
+  std::cout << "converting " << input->views().size() << " views of " << input->source() << " to " << args.target
+            << " in " << out_dir << "\n";
+  config.input = ConvertInput(*input, args.target, out_dir);
+  config.output.dir = (std::filesystem::path(out_dir) / "out").string();
+  const std::string yaml_path = (std::filesystem::path(out_dir) / "sacfuse.yaml").string();
+  WriteFileAtomically(yaml_path, DumpJobConfig(config, false));
+  std::cout << "run it: sacfuse run " << yaml_path << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+void AddConvertCommand(CLI::App& app, int* exit_code) {
+  auto args = std::make_shared<ConvertArgs>();
+  auto* cmd = app.add_subcommand("convert", "Write the config's input block in another input format");
+  cmd->add_option("CONFIG", args->config_path, "YAML config whose input to convert")->required();
+  cmd->add_option("--to", args->target, "target format (see jobs/convert_input.h)")->required();
+  cmd->add_option("--out", args->out_dir, "output folder")->required();
+  cmd->callback([args, exit_code] {
+    SetupLogging("warn");
+    *exit_code = RunGuarded([&] { return ConvertCommand(*args); });
+  });
+}
+
+}  // namespace sacfuse::cli
