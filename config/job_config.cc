@@ -10,6 +10,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "config/config_schema.h"
+#include "core/crs.h"
 #include "core/option_check.h"
 #include "core/error.h"
 
@@ -19,17 +20,33 @@ namespace {
 // The single place where YAML keys meet struct fields. Docs name the unit and the rule.
 ConfigSchema MakeSchema(JobConfig* c) {
   ConfigSchema s;
-  s.AddString("input.format", &c->input.format, "input kind: colmap (a COLMAP dense workspace)", {"colmap"});
+  s.AddString("crs", &c->crs,
+              "project CRS of the coordinates, written into every LAS: \"\" = none (local metres) | EPSG:326zz / "
+              "EPSG:327zz (WGS 84 / UTM zone zz N / S) | EPSG:258zz (ETRS89 / UTM zone zz N, zz = 28..38) | "
+              "ENU:lat,lon,h (local east-north-up frame at that origin; degrees, metres)");
+  s.AddString("input.format", &c->input.format,
+              "input kind: colmap (a COLMAP dense workspace) | openmvs (a folder of OpenMVS depth%04u.dmap files) "
+              "| rasters (float32 TIFF depth rasters + a camera file, see input.cameras)",
+              {"colmap", "openmvs", "rasters"});
   s.AddString("input.path", &c->input.path, "input folder (relative to this file); required");
   s.AddString("input.depth_type", &c->input.depth_type, "COLMAP depth maps to fuse: geometric | photometric",
               {"geometric", "photometric"});
+  s.AddString("input.cameras", &c->input.cameras,
+              "rasters: camera file (.yaml/.yml/.csv, relative to this file); empty = cameras.yaml, cameras.yml or "
+              "cameras.csv in input.path");
+  s.AddString("input.depth_kind", &c->input.depth_kind,
+              "rasters: depth values are z (along the optical axis) | range (distance along the pixel's ray), metres",
+              {"z", "range"});
   s.AddString("output.dir", &c->output.dir, "output folder (relative to this file)");
   s.AddString("output.las_version", &c->output.las_version, "LAS version: 1.4 (point format 7) | 1.2 (format 3)",
               {"1.4", "1.2"});
   s.AddDouble("output.scale_m", &c->output.scale_m, "LAS coordinate quantum, metres; 10^k x {1, 0.5, 0.25}");
   s.AddString("fusion.method", &c->fusion.method,
-              "fusion method: sac (Select-and-Combine) | union (every valid depth pixel: the 'before fusion' baseline)",
-              {"sac", "union"});
+              "fusion method: sac (Select-and-Combine) | union (every valid depth pixel: the 'before fusion' baseline) "
+              "| the paper's comparison methods: consistency ([15]: occluded and redundant depths removed) | "
+              "disparity_normal ([13]: disparity + normal consistency, averaged) | tsdf ([7]: truncated signed "
+              "distance on a sparse voxel grid) | multiray ([35]: correspondence groups triangulated from all rays)",
+              {"sac", "union", "consistency", "disparity_normal", "tsdf", "multiray"});
   SacOptions& f = c->fusion.sac;
   s.AddInt("fusion.max_neighbor_views", &f.max_neighbor_views, "neighbour views per view (by footprint overlap)");
   s.AddDouble("fusion.max_view_angle_deg", &f.max_view_angle_deg, "max angle between neighbours' view directions, deg");
@@ -64,6 +81,32 @@ ConfigSchema MakeSchema(JobConfig* c) {
               {"fast", "slic", "slico", "mslic"});
   s.AddInt("superpixels.block_size_px", &sp.block_size_px, "images are segmented in blocks of this size, px");
   s.AddFloat("superpixels.depth_weight", &sp.depth_weight, "weight of depth as an extra SLIC channel (0 = off)");
+  ConsistencyOptions& cons = c->fusion.consistency;  // method consistency
+  s.AddDouble("consistency.depth_threshold_rel", &cons.depth_threshold_rel,
+              "redundant / occluded when the reprojected depth is within / in front by this fraction of the "
+              "neighbour's depth (paper: 0.01); (0, 0.5]");
+  DisparityNormalOptions& dn = c->fusion.disparity_normal;  // method disparity_normal
+  s.AddDouble("disparity_normal.disparity_threshold_px", &dn.disparity_threshold_px,
+              "max disparity difference f b |1/z - 1/d|, pixels (fusibile: 0.5); > 0");
+  s.AddDouble("disparity_normal.normal_threshold_deg", &dn.normal_threshold_deg,
+              "max angle between normals, degrees (paper: 30); (0, 180]");
+  s.AddInt("disparity_normal.min_consistent_views", &dn.min_consistent_views,
+           "consistent neighbour views needed to keep a point (paper: 2); 1-64");
+  s.AddInt("disparity_normal.normal_radius_px", &dn.normal_radius_px,
+           "normals are plane fits to the depth in (2r+1)^2 pixels; r in 1-10");
+  TsdfOptions& ts = c->fusion.tsdf;  // method tsdf
+  s.AddDouble("tsdf.voxel_size_gsd", &ts.voxel_size_gsd, "voxel edge, in GSDs of the block; > 0");
+  s.AddDouble("tsdf.truncation_gsd", &ts.truncation_gsd, "truncation distance, GSDs; > tsdf.voxel_size_gsd");
+  s.AddDouble("tsdf.min_weight", &ts.min_weight, "observations both voxels of a zero crossing need; >= 1");
+  s.AddDouble("tsdf.max_memory_gb", &ts.max_memory_gb,
+              "voxel grid limit per run or tile, GiB; 0 = resources.memory_gb; >= 0");
+  MultirayOptions& mr = c->fusion.multiray;  // method multiray
+  s.AddDouble("multiray.depth_tolerance_gsd", &mr.depth_tolerance_gsd,
+              "a neighbour pixel joins a group when its depth agrees within this many local GSDs; > 0");
+  s.AddInt("multiray.min_rays", &mr.min_rays, "rays a group needs to be triangulated; 2-65");
+  s.AddDouble("multiray.ray_sigma_px", &mr.ray_sigma_px, "precision across a ray, pixels; > 0");
+  s.AddDouble("multiray.depth_sigma_gsd", &mr.depth_sigma_gsd,
+              "precision of a member's depth along its ray, local GSDs; 0 = rays only (pure intersection)");
   TilingOptions& t = c->tiling;
   s.AddDouble("tiling.tile_size_m", &t.tile_size_m,
               "geo-tile edge, metres; 0 = automatic: untiled when the block fits in resources.memory_gb, else the largest "
@@ -124,11 +167,34 @@ bool IsAllowedLasScale(double scale) {
   return false;
 }
 
+// input.cameras and input.depth_kind belong to format rasters.
+void CheckRasterInputKeys(const InputOptions& in, OptionChecker* check) {
+  if (in.format != "rasters") {
+    check->Require(in.cameras.empty(), "input.cameras", in.cameras, "only read by input.format: rasters");
+    check->Require(in.depth_kind == "z", "input.depth_kind", in.depth_kind, "only read by input.format: rasters");
+    return;
+  }
+  if (in.cameras.empty()) return;
+  std::string ext = std::filesystem::path(in.cameras).extension().string();
+  for (char& ch : ext) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+  check->Require(ext == ".yaml" || ext == ".yml" || ext == ".csv", "input.cameras", in.cameras,
+                 "must be a .yaml, .yml or .csv camera file");
+}
+
 }  // namespace
 
 void ValidateJobConfig(const JobConfig& c) {
   OptionChecker check;
+  try {
+    ParseProjectCrs(c.crs);
+  } catch (const Error& e) {
+    std::string why = e.what();
+    const std::string prefix = "crs \"" + c.crs + "\": ";
+    if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
+    check.Require(false, "crs", "\"" + c.crs + "\"", why);
+  }
   check.NotEmpty("input.path", c.input.path);
+  CheckRasterInputKeys(c.input, &check);
   check.NotEmpty("output.dir", c.output.dir);
   check.Require(IsAllowedLasScale(c.output.scale_m), "output.scale_m", OptionChecker::ToString(c.output.scale_m),
                 "must be 10^k x {1, 0.5, 0.25} (e.g. 0.001, 0.0025, 0.01)");
@@ -139,6 +205,17 @@ void ValidateJobConfig(const JobConfig& c) {
   check.Require(!c.evaluation.tau_gsd.empty(), "evaluation.tau_gsd", "[]", "must list at least one threshold");
   for (double t : c.evaluation.tau_gsd) check.Greater("evaluation.tau_gsd[]", t, 0.0);
   if (c.fusion.method == "sac") check.Absorb([&] { ValidateSacOptions(c.fusion.sac); });
+  if (c.fusion.method == "consistency") check.Absorb([&] { ValidateConsistencyOptions(c.fusion.consistency); });
+  if (c.fusion.method == "disparity_normal") {
+    check.Absorb([&] { ValidateDisparityNormalOptions(c.fusion.disparity_normal); });
+  }
+  if (c.fusion.method == "tsdf") check.Absorb([&] { ValidateTsdfOptions(c.fusion.tsdf); });
+  if (c.fusion.method == "multiray") check.Absorb([&] { ValidateMultirayOptions(c.fusion.multiray); });
+  if (c.fusion.method == "consistency" || c.fusion.method == "disparity_normal" || c.fusion.method == "multiray") {
+    check.InRange("fusion.max_neighbor_views", c.fusion.sac.max_neighbor_views, 1, 64);
+    check.InRange("fusion.max_view_angle_deg", c.fusion.sac.max_view_angle_deg, 0.0, 180.0);
+    check.InRange("fusion.min_footprint_overlap", c.fusion.sac.min_footprint_overlap, 0.0, 1.0);
+  }
   check.Absorb([&] { ValidateTilingOptions(c.tiling); });
   check.Require(!(c.tiling.tile_size_m > 0 && c.fusion.method == "sac" && c.fusion.sac.correspondence == "dense"),
                 "fusion.correspondence", c.fusion.sac.correspondence,
@@ -158,6 +235,7 @@ JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source
   std::map<std::string, int> key_lines;
   MakeSchema(&config).Parse(root, source_name, &key_lines);
   config.input.path = ResolvePath(config.input.path, base_dir);
+  config.input.cameras = ResolvePath(config.input.cameras, base_dir);
   config.output.dir = ResolvePath(config.output.dir, base_dir);
   config.evaluation.reference = ResolvePath(config.evaluation.reference, base_dir);
   config.evaluation.mask = ResolvePath(config.evaluation.mask, base_dir);

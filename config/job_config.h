@@ -6,15 +6,25 @@
 #include <utility>
 #include <vector>
 
+#include "core/consistency_fusion.h"
+#include "core/disparity_normal_fusion.h"
+#include "core/multiray_fusion.h"
 #include "core/sac_options.h"
+#include "core/tsdf_fusion.h"
 #include "tiling/tile_grid.h"
 
 namespace sacfuse {
 
 struct InputOptions {
   std::string format = "colmap";        // input kind: colmap (a COLMAP dense workspace)
+                                        //   | openmvs (a folder of OpenMVS depth%04u.dmap files)
+                                        //   | rasters (float32 TIFF depth rasters + a camera file)
   std::string path;                     // workspace folder; relative paths are relative to the config file
   std::string depth_type = "geometric";  // which COLMAP depth maps: geometric | photometric
+  // format rasters (io/raster_block.h): the camera file (.yaml/.yml/.csv); relative paths are relative to the
+  // config file; "" = the cameras.yaml, cameras.yml or cameras.csv in `path`.
+  std::string cameras;
+  std::string depth_kind = "z";         // format rasters: z (along the optical axis) | range (along the ray), metres
 };
 
 struct OutputOptions {
@@ -26,8 +36,15 @@ struct OutputOptions {
 struct FusionOptions {
   // sac:   Select-and-Combine (Netlets over superpixels; see core/sac_options.h for every option).
   // union: every valid depth pixel becomes a point (no fusion; the "before fusion" baseline).
+  // consistency | disparity_normal | tsdf | multiray: the paper's comparison methods [15] [13] [7] [35]
+  //   (core/consistency_fusion.h, disparity_normal_fusion.h, tsdf_fusion.h, multiray_fusion.h); they reproject
+  //   into the views fusion.max_neighbor_views / max_view_angle_deg / min_footprint_overlap choose.
   std::string method = "sac";
   SacOptions sac;          // YAML: fusion.<field> and superpixels.<field>
+  ConsistencyOptions consistency;          // YAML: consistency.<field>
+  DisparityNormalOptions disparity_normal; // YAML: disparity_normal.<field>
+  TsdfOptions tsdf;                        // YAML: tsdf.<field>
+  MultirayOptions multiray;                // YAML: multiray.<field>
   std::string superpixel_cache_dir;  // "" = <output.dir>/superpixels; reused by later runs with equal options
 };
 
@@ -49,6 +66,10 @@ struct LogOptions {
 };
 
 struct JobConfig {
+  // Project CRS of the world coordinates (core/crs.h): "" = not georeferenced (local metres, no CRS in the LAS),
+  // "EPSG:326zz" / "EPSG:327zz" (WGS 84 / UTM zone zz N / S), "EPSG:258zz" (ETRS89 / UTM zone zz N, 28..38),
+  // "ENU:lat,lon,h" (local east-north-up frame at that origin: degrees, degrees, metres ellipsoidal).
+  std::string crs;
   InputOptions input;
   OutputOptions output;
   FusionOptions fusion;

@@ -12,7 +12,8 @@ bool AffectsResults(const std::string& key) {
   auto starts = [&](const char* prefix) { return key.rfind(prefix, 0) == 0; };
   if (key == "fusion.superpixel_cache_dir" || key == "tiling.claim_timeout_s") return false;
   return starts("input.") || starts("fusion.") || starts("superpixels.") || starts("tiling.") ||
-         key == "output.scale_m" || key == "output.las_version";
+         starts("consistency.") || starts("disparity_normal.") || starts("tsdf.") || starts("multiray.") ||
+         key == "output.scale_m" || key == "output.las_version" || key == "crs";
 }
 
 std::map<std::string, std::string> ParseLines(const std::string& text) {

@@ -10,11 +10,11 @@
 #include <map>
 #include <set>
 
-#include <opencv2/imgcodecs.hpp>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/colmap_array.h"
+#include "io/rgb_image_file.h"
 
 namespace sacfuse {
 namespace {
@@ -251,34 +251,8 @@ NormalMap ColmapWorkspace::ReadNormalMap(const View& view) const {
 }
 
 RgbImage ColmapWorkspace::ReadImage(const View& view) const {
-  const std::string path = ImagePath(view);
-  const std::string for_image = " (image " + Quoted(view.name) + ")";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "missing image file" + for_image);
-  // COLMAP ignores EXIF orientation; so must we, or the raster would not match the camera.
-  cv::Mat bgr;
-  try {
-    bgr = cv::imread(path, cv::IMREAD_COLOR | cv::IMREAD_IGNORE_ORIENTATION);
-  } catch (const cv::Exception& e) {
-    throw InputError(path, std::string("cannot decode image: ") + e.what() + for_image);
-  }
-  if (bgr.empty()) throw InputError(path, "cannot decode image (unsupported or corrupt)" + for_image);
-  if (bgr.cols != view.camera.width || bgr.rows != view.camera.height) {
-    throw InputError(path, "image is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
-                               " but its camera is " + std::to_string(view.camera.width) + "x" +
-                               std::to_string(view.camera.height) + for_image);
-  }
-  RgbImage rgb(bgr.cols, bgr.rows, 3);
-  for (int row = 0; row < bgr.rows; ++row) {
-    const uint8_t* src = bgr.ptr<uint8_t>(row);
-    uint8_t* dst = &rgb.at(row, 0, 0);
-    for (int col = 0; col < bgr.cols; ++col) {
-      dst[3 * col + 0] = src[3 * col + 2];
-      dst[3 * col + 1] = src[3 * col + 1];
-      dst[3 * col + 2] = src[3 * col + 0];
-    }
-  }
-  return rgb;
+  // COLMAP ignores EXIF orientation; so must we, or the raster would not match the camera (ReadRgbImageFile).
+  return ReadRgbImageFile(ImagePath(view), "image " + Quoted(view.name), view.camera.width, view.camera.height);
 }
 
 void WriteColmapStereoConfigs(const std::string& workspace_dir, const std::vector<std::string>& image_names) {

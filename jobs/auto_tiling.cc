@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "jobs/memory_model.h"
+#include "jobs/method_memory.h"
 #include "jobs/tile_plan.h"
 
 namespace sacfuse {
@@ -35,13 +36,13 @@ double TileSizeOfRunInProgress(const JobConfig& config) {
   }
 }
 
-uint64_t LargestTileBytes(const TilePlan& plan, size_t* tiles_with_views) {
+uint64_t LargestTileBytes(const TilePlan& plan, const FusionOptions& fusion, size_t* tiles_with_views) {
   uint64_t largest = 0;
   *tiles_with_views = 0;
   for (const PlannedTile& t : plan.tiles) {
     if (t.views.empty()) continue;
     ++*tiles_with_views;
-    largest = std::max(largest, t.memory_bytes);
+    largest = std::max(largest, MethodTileBytes(t, fusion));  // SAC: t.memory_bytes
   }
   return largest;
 }
@@ -57,7 +58,8 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
   TilingDecision d;
   d.budget_bytes = MemoryBudgetBytes(config.resources.memory_gb);
   const BlockPixels pixels = MeasureBlockPixels(input);
-  d.untiled_bytes = UntiledSacBytes(pixels);
+  d.untiled_bytes =
+      UntiledSacBytes(pixels) + MethodExtraBytesPerDepthPixel(config.fusion) * pixels.total_depth_pixels();
   const int threads = EffectiveThreads(config);
   const uint64_t pool = TileMemoryPoolBytes(d.budget_bytes);
   const uint64_t superpixel_bytes = SuperpixelPassBytes(pixels);
@@ -65,8 +67,8 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
     spdlog::warn("the superpixel pass needs ~{:.2f} GiB for the largest view, more than resources.memory_gb = {}",
                  GiB(superpixel_bytes), config.resources.memory_gb);
   }
-  if (config.fusion.method != "sac") {
-    d.reason = "method " + config.fusion.method + " runs untiled (streams one view at a time)";
+  if (config.fusion.method == "union" && config.tiling.tile_size_m <= 0) {
+    d.reason = "method union runs untiled unless tiling.tile_size_m is given (streams one view at a time)";
     return d;
   }
   if (config.tiling.tile_size_m > 0) {
@@ -81,7 +83,7 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
                " GiB of the " + fmt::format("{:.2f}", GiB(d.budget_bytes)) + " GiB budget";
     return d;
   }
-  if (config.fusion.sac.correspondence == "dense") {
+  if (config.fusion.method == "sac" && config.fusion.sac.correspondence == "dense") {
     throw ConfigError("fusion.correspondence = dense runs untiled only, but this block needs ~" +
                       fmt::format("{:.2f}", GiB(d.untiled_bytes)) + " GiB > resources.memory_gb = " +
                       fmt::format("{}", config.resources.memory_gb) +
@@ -102,7 +104,7 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
       options.tile_size_m = size;
       const TilePlan plan = BuildTilePlan(input, options);
       size_t tiles = 0;
-      const uint64_t largest = LargestTileBytes(plan, &tiles);
+      const uint64_t largest = LargestTileBytes(plan, config.fusion, &tiles);
       const int parallel = static_cast<int>(std::min<size_t>(static_cast<size_t>(wanted), std::max<size_t>(tiles, 1)));
       smallest_bytes = largest;
       smallest_size = size;

@@ -25,9 +25,9 @@ struct TilingDecision {
 // Worker threads of resources.threads (0 = all cores), at least 1.
 int EffectiveThreads(const JobConfig& config);
 
-// Decides untiled vs tiled and the tile size. Explicit tile sizes are kept (tiled when > 0); the union method is
-// always untiled. Throws ConfigError when even small tiles exceed the budget, or when dense correspondences
-// (untiled only) do not fit.
+// Decides untiled vs tiled and the tile size. Explicit tile sizes are kept (tiled when > 0, for every method);
+// without one the union method runs untiled, the others are sized like SAC. Throws ConfigError when even small
+// tiles exceed the budget, or when dense correspondences (untiled only) do not fit.
 TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input);
 
 // `config` with tiling.tile_size_m set to the decision (0 = untiled). Logs the decision once.

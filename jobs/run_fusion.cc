@@ -12,9 +12,13 @@
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
 #include "jobs/open_input.h"
+#include "io/las_crs.h"
 #include "io/las_writer.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/memory_model.h"
+#include "jobs/method_block.h"
+#include "jobs/report_input_counts.h"
+#include "jobs/report_writer.h"
 #include "jobs/resource_usage.h"
 #include "jobs/thread_limit.h"
 #include "jobs/sac_block.h"
@@ -42,6 +46,16 @@ class CountingSink : public PointSink {
   std::vector<uint64_t> per_view_;
 };
 
+
+nlohmann::json MethodStatsJson(const MethodStats& m, bool tiled) {
+  nlohmann::json counters = nlohmann::json::object();
+  for (const auto& [name, n] : m.counters) counters[name] = n;
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [stage, secs] : m.stage_seconds) stages[stage] = secs;
+  // Tiled: emitted and the counters include the points each tile computed in its halo (left to its neighbours).
+  return {{"pixels_in", m.input_pixels}, {"points_emitted", m.emitted}, {"emitted_includes_halos", tiled},
+          {"counters", counters}, {"stage_seconds", stages}};
+}
 
 void WriteRunReport(const RunSummary& s, const JobConfig& config) {
   nlohmann::json views = nlohmann::json::array();
@@ -82,20 +96,21 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                 {"points_emitted", s.sac.collapse.emitted},
                 {"superpixels_computed", s.superpixels_computed},
                 {"stage_seconds", stages}};
-    if (s.tiles_run > 0) {
-      nlohmann::json failed = nlohmann::json::array();
-      for (const auto& [id, reason] : s.failed_tiles) failed.push_back({{"id", id}, {"reason", reason}});
-      j["tiling"] = {{"tile_size_m", config.tiling.tile_size_m}, {"halo_m", config.tiling.halo_m},
-                     {"tiles_run", s.tiles_run}, {"tiles_computed", s.tiles_computed},
-                     {"tiles_skipped", s.tiles_skipped}, {"failed_tiles", failed}};
-    }
   }
+  if (s.tiles_run > 0) {
+    nlohmann::json failed = nlohmann::json::array();
+    for (const auto& [id, reason] : s.failed_tiles) failed.push_back({{"id", id}, {"reason", reason}});
+    j["tiling"] = {{"tile_size_m", config.tiling.tile_size_m}, {"halo_m", config.tiling.halo_m},
+                   {"tiles_run", s.tiles_run}, {"tiles_computed", s.tiles_computed},
+                   {"tiles_skipped", s.tiles_skipped}, {"failed_tiles", failed}};
+  }
+  if (s.has_method_stats) j["fusion"] = MethodStatsJson(s.method_stats, s.tiles_run > 0);
   WriteFileAtomically(s.report_path, j.dump(2) + "\n");
 }
 
 void CheckRerunTiles(const std::vector<std::string>& rerun_tiles, const TilePlan* plan) {
   if (rerun_tiles.empty()) return;
-  if (!plan) throw ConfigError("--tiles: only tiled runs have tiles (fusion.method sac, and tiling.tile_size_m > 0 or a block too big for the memory budget)");
+  if (!plan) throw ConfigError("--tiles: only tiled runs have tiles (tiling.tile_size_m > 0, or a block too big for the memory budget)");
   const std::vector<std::string> known = TileIdsWithViews(*plan);
   std::string unknown;
   for (const auto& id : rerun_tiles) {
@@ -122,6 +137,19 @@ void SetSacSummary(const SacBlockResult& sac, RunSummary* summary) {
   LogSacStats(sac.stats);
 }
 
+// Comparison methods (jobs/fusion_methods.h): input counts per view and the method's counters.
+void SetMethodSummary(const MethodStats& stats, RunSummary* summary) {
+  summary->has_method_stats = true;
+  summary->method_stats = stats;
+  summary->input_points = stats.input_pixels;
+  for (size_t i = 0; i < summary->views.size() && i < stats.input_per_view.size(); ++i) {
+    summary->views[i].input_pixels = stats.input_per_view[i];
+  }
+  std::string counters;
+  for (const auto& [name, n] : stats.counters) counters += fmt::format(", {} {}", name, n);
+  spdlog::info("{}: {} pixels in, {} points emitted{}", summary->method, stats.input_pixels, stats.emitted, counters);
+}
+
 std::string CacheDir(const JobConfig& config) {
   return config.fusion.superpixel_cache_dir.empty()
              ? (std::filesystem::path(config.output.dir) / "superpixels").string()
@@ -133,12 +161,16 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
               const std::vector<std::string>& rerun_tiles, RunSummary* summary) {
   const TilePlan plan = SharedTilePlan(config, input);
   CheckRerunTiles(rerun_tiles, &plan);
-  spdlog::info("tiled SAC: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
-               plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
+  spdlog::info("tiled {}: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
+               config.fusion.method, plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
   const TiledRunOutcome tiled =
-      RunTiledSac(config, input, plan, rerun_tiles, MakeLasOptions(config.output), summary->las_path, progress);
-  SetSacSummary(tiled.block, summary);
+      RunTiledSac(config, input, plan, rerun_tiles, MakeLasOptions(config), summary->las_path, progress);
+  if (config.fusion.method == "sac") {
+    SetSacSummary(tiled.block, summary);
+  } else {
+    SetMethodSummary(tiled.method_stats, summary);
+  }
   summary->tiles_run = tiled.tiles_with_views;
   summary->tiles_computed = tiled.tiles_computed;
   summary->tiles_skipped = tiled.tiles_skipped;
@@ -158,11 +190,10 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
 void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
                 RunSummary* summary) {
   const auto& views = input.views();
-  LasWriter writer(summary->las_path, MakeLasOptions(config.output));
+  LasWriter writer(summary->las_path, MakeLasOptions(config));
   CountingSink counting(writer);
   if (config.fusion.method == "union") {
     spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
-    if (config.tiling.tile_size_m > 0) spdlog::info("tiling applies to sac only; the union runs untiled");
     for (size_t i = 0; i < views.size(); ++i) {
       const DepthMap depth = input.ReadDepthMap(views[i]);
       const RgbImage image = input.ReadImage(views[i]);
@@ -170,6 +201,8 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
       summary->input_points += summary->views[i].input_pixels;
       if (progress) progress("fuse", i + 1, views.size());
     }
+  } else if (config.fusion.method != "sac") {
+    SetMethodSummary(FuseWorkspaceWithMethod(input, config, counting, progress).stats, summary);
   } else {
     SetSacSummary(FuseWorkspaceWithSac(input, config.fusion.sac, CacheDir(config), counting, progress),
                   summary);
@@ -186,6 +219,12 @@ LasWriterOptions MakeLasOptions(const OutputOptions& output) {
   o.version_minor = output.las_version == "1.2" ? 2 : 4;
   o.scale_m = output.scale_m;
   o.generating_software = VersionString();
+  return o;
+}
+
+LasWriterOptions MakeLasOptions(const JobConfig& config) {
+  LasWriterOptions o = MakeLasOptions(config.output);
+  AddCrsToLasOptions(ParseProjectCrs(config.crs), &o);
   return o;
 }
 
@@ -208,7 +247,7 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.report_path = (std::filesystem::path(config.output.dir) / "run_report.json").string();
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
-  const std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse");
+  const std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse", config.crs);
   const DepthBlock& input = *block;
   const auto& views = input.views();
   TilingDecision decision;
@@ -220,7 +259,7 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.memory_budget_gib = config.resources.memory_gb;
   summary.memory_estimate_gib =
       static_cast<double>(decision.tiled ? decision.max_tile_bytes : decision.untiled_bytes) / kGiB;
-  const bool tiled = config.fusion.method == "sac" && config.tiling.tile_size_m > 0;
+  const bool tiled = config.tiling.tile_size_m > 0;  // every method (union only when given a tile size)
   if (!tiled) CheckRerunTiles(rerun_tiles, nullptr);
   if (given.tiling.tile_size_m != config.tiling.tile_size_m) {
     WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));  // with the size chosen
@@ -231,17 +270,25 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   if (config.fusion.method == "sac") {
     spdlog::info("fusion method: sac (Select-and-Combine, unary '{}', correspondences '{}')",
                  config.fusion.sac.unary, config.fusion.sac.correspondence);
+  } else if (config.fusion.method != "union") {
+    spdlog::info("fusion method: {} (comparison method; no superpixels)", config.fusion.method);
   }
   if (tiled) {
     RunTiled(config, input, progress, rerun_tiles, &summary);
   } else {
     RunUntiled(config, input, progress, &summary);
   }
+  if (config.fusion.method == "sac") {  // per-view valid depth pixels ("before" counts) from the superpixel tables
+    const std::vector<uint64_t> valid = ValidDepthPixelsPerView(input, CacheDir(config));
+    summary.input_points = 0;
+    for (size_t i = 0; i < views.size(); ++i) summary.input_points += summary.views[i].input_pixels = valid[i];
+  }
 
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.cpu_seconds = ProcessCpuSeconds() - cpu_start;
   summary.peak_rss_mib = PeakRssMiB();
   WriteRunReport(summary, config);
+  WriteHtmlReportOrWarn(config);  // DIR/report/index.html; a failure is only a warning
   if (summary.failed_tiles.empty()) {
     spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
                  summary.wall_seconds, summary.peak_rss_mib);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "config/job_config.h"
+#include "core/method_stats.h"
 #include "core/sac_fusion.h"
 #include "io/las_writer.h"
 
@@ -31,6 +32,8 @@ struct RunSummary {
   double peak_rss_mib = 0.0;
   bool has_sac_stats = false;  // method == sac
   SacStats sac;
+  bool has_method_stats = false;  // the other methods (core/method_stats.h)
+  MethodStats method_stats;
   size_t superpixels_computed = 0;
   size_t tiles_run = 0;  // tiled SAC (tiling.tile_size_m > 0): tiles with views; 0 = untiled
   size_t tiles_computed = 0;  // tiled: computed by this invocation (the rest were verified done and skipped)
@@ -56,8 +59,11 @@ using RunProgress = std::function<void(const std::string& stage, size_t done, si
 RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {},
                         const std::vector<std::string>& rerun_tiles = {});
 
-// LAS writer options of a config's output (version, scale, generating software; no offset).
+// LAS writer options of a config's output (version, scale, generating software; no offset, no CRS).
 LasWriterOptions MakeLasOptions(const OutputOptions& output);
+// The same plus the CRS records of config `crs` (io/las_crs.h): what every LAS a job writes (tiles, fused.las,
+// merge, union) is written with.
+LasWriterOptions MakeLasOptions(const JobConfig& config);
 
 // Path of the fused cloud of a config.
 std::string FusedLasPath(const JobConfig& config);

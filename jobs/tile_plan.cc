@@ -153,7 +153,7 @@ TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, std::s
 
 TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
   ValidateJobConfig(given);
-  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan");
+  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan", given.crs);
   const JobConfig config = ResolveTiling(given, *input);
   return SharedTilePlan(config, *input, plan_path);
 }

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "jobs/open_input.h"
 #include "jobs/auto_tiling.h"
+#include "jobs/fusion_methods.h"
 #include "jobs/run_fusion.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tile_claim.h"
@@ -22,8 +23,7 @@ namespace {
 // Opens the workspace and resolves an automatic tile size into *resolved; throws ConfigError for untiled jobs.
 std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* resolved) {
   ValidateJobConfig(config);
-  if (config.fusion.method != "sac") throw ConfigError("not a tiled run: tiles need fusion.method sac");
-  std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "fuse");
+  std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "fuse", config.crs);
   *resolved = ResolveTiling(config, *input);
   if (resolved->tiling.tile_size_m <= 0) {
     throw ConfigError("not a tiled run: tiling.tile_size_m = 0 and the whole block fits in resources.memory_gb, so "
@@ -33,7 +33,7 @@ std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* r
 }
 
 LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
-  LasWriterOptions las = MakeLasOptions(config.output);
+  LasWriterOptions las = MakeLasOptions(config);
   las.offset = SharedTileOffset(plan);
   return las;
 }
@@ -71,7 +71,8 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   std::error_code ec;
   fs::remove(FusedLasPath(config), ec);  // stale until the tiles are merged again
   try {
-    EnsureTiledSuperpixels(*input, plan, config.fusion.sac, TileCacheDir(config), {}, tile);
+    EnsureTiledSuperpixels(*input, plan, config.fusion.sac, TileCacheDir(config), {}, tile,
+                           MethodUsesSuperpixels(config.fusion.method));
     CheckTileFitsBudget(*tile, config);
     const TileFusionResult r = ComputeTileFiles(config, *input, plan, *tile, las, tiles_dir, hash);
     out.result = TileWork::kComputed;

@@ -20,8 +20,10 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "jobs/auto_tiling.h"
+#include "jobs/fusion_methods.h"
 #include "jobs/memory_admission.h"
 #include "jobs/memory_model.h"
+#include "jobs/method_memory.h"
 #include "jobs/resource_usage.h"
 #include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
@@ -98,7 +100,7 @@ TileFusionResult ComputeTileFiles(const JobConfig& config, const DepthBlock& inp
   bool has_las = false;
   {
     LasWriter writer(TileLasPath(tiles_dir, tile.id), las);
-    fused = FuseTile(input, plan, tile, config.fusion.sac, TileCacheDir(config), writer, cluster_cache);
+    fused = FuseTile(input, plan, tile, WithTsdfMemoryLimit(config), TileCacheDir(config), writer, cluster_cache);
     if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
       writer.Close();
       has_las = true;
@@ -115,11 +117,12 @@ TileFusionResult ComputeTileFiles(const JobConfig& config, const DepthBlock& inp
 
 void CheckTileFitsBudget(const PlannedTile& tile, const JobConfig& config) {
   const uint64_t pool = TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb));
-  if (tile.memory_bytes <= pool) return;
+  const uint64_t bytes = MethodTileBytes(tile, config.fusion);  // SAC: tile.memory_bytes
+  if (bytes <= pool) return;
   throw Error(fmt::format("tile {}: out-of-memory guard: its {} views' windows need ~{:.2f} GiB, more than the "
                           "{:.2f} GiB that resources.memory_gb = {} leaves for tiles; use a smaller "
                           "tiling.tile_size_m (or 0 = sized from the budget) or raise resources.memory_gb",
-                          tile.id, tile.views.size(), static_cast<double>(tile.memory_bytes) / kGiB,
+                          tile.id, tile.views.size(), static_cast<double>(bytes) / kGiB,
                           static_cast<double>(pool) / kGiB, config.resources.memory_gb));
 }
 
@@ -141,7 +144,8 @@ std::vector<std::string> TileIdsWithViews(const TilePlan& plan) {
 TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<std::string>& rerun_ids, LasWriterOptions las_options,
                             const std::string& fused_las_path, const SacProgress& progress) {
-  if (config.fusion.sac.correspondence == "dense") {
+  const bool sac = config.fusion.method == "sac";
+  if (sac && config.fusion.sac.correspondence == "dense") {
     throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
   }
   ValidateSacOptions(config.fusion.sac);
@@ -186,15 +190,22 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, co
     std::error_code ec;
     fs::remove(fused_las_path, ec);  // stale until the tiles are merged again
     const auto sp_start = std::chrono::steady_clock::now();
-    out.block.superpixels_computed =
-        EnsureTiledSuperpixels(input, plan, config.fusion.sac, TileCacheDir(config), progress);
+    out.block.superpixels_computed = EnsureTiledSuperpixels(input, plan, config.fusion.sac, TileCacheDir(config),
+                                                            progress, nullptr, MethodUsesSuperpixels(config.fusion.method));
     out.block.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sp_start).count();
-    spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",
-                 out.block.superpixels_computed, input.views().size() - out.block.superpixels_computed,
-                 out.block.superpixel_seconds, todo.size(), out.tiles_with_views);
+    if (sac) {
+      spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",
+                   out.block.superpixels_computed, input.views().size() - out.block.superpixels_computed,
+                   out.block.superpixel_seconds, todo.size(), out.tiles_with_views);
+    } else {
+      spdlog::info("colour caches checked ({:.1f} s; no superpixels for {}); {} of {} tiles to compute",
+                   out.block.superpixel_seconds, config.fusion.method, todo.size(), out.tiles_with_views);
+    }
   }
   SacStats& total = out.block.stats;
   total.emitted_per_view.assign(input.views().size(), 0);
+  out.method_stats.emitted_per_view.assign(input.views().size(), 0);
+  out.method_stats.input_per_view.assign(input.views().size(), 0);
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   MemoryAdmission admission(TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   std::mutex mutex;  // guards out, total and progress across tile workers
@@ -219,13 +230,24 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, co
       CheckTileFitsBudget(tile, config);
       TileFusionResult r;
       {
-        MemoryReservation reservation(admission, tile.memory_bytes);
+        MemoryReservation reservation(admission, MethodTileBytes(tile, config.fusion));
         r = ComputeTileFiles(config, input, plan, tile, las_options, tiles_dir, hash, &cluster_cache);
       }
       std::lock_guard<std::mutex> lock(mutex);
-      AddSacStats(r.stats, &total);
-      for (size_t v = 0; v < tile.views.size(); ++v)
-        total.emitted_per_view[tile.views[v].view] += r.stats.emitted_per_view[v];
+      if (sac) {
+        AddSacStats(r.stats, &total);
+        for (size_t v = 0; v < tile.views.size(); ++v)
+          total.emitted_per_view[tile.views[v].view] += r.stats.emitted_per_view[v];
+      } else {
+        out.method_stats.Add(r.method_stats);
+        for (size_t v = 0; v < tile.views.size(); ++v) {
+          const uint32_t view = tile.views[v].view;
+          if (v < r.method_stats.emitted_per_view.size())
+            out.method_stats.emitted_per_view[view] += r.method_stats.emitted_per_view[v];
+          if (v < r.method_stats.input_per_view.size())
+            out.method_stats.input_per_view[view] += r.method_stats.input_per_view[v];
+        }
+      }
       spdlog::info("tile {} ({}/{}): {} views, {} points in its core, {} left to neighbours", tile.id, n, of,
                    tile.views.size(), r.points_in_core, r.points_outside_core);
     } catch (const std::exception& e) {

@@ -1,5 +1,6 @@
 #pragma once
-// A tiled SAC run with per-tile outputs and resume (tiling.tile_size_m > 0). State lives in DIR/tiles/:
+// A tiled SAC run with per-tile outputs and resume (tiling.tile_size_m > 0); every other fusion.method runs through
+// the same tiles (jobs/tiled_sac.h). State lives in DIR/tiles/:
 //   run_config.yaml  the result-affecting settings of the last run (config/result_settings.h), to name changes
 //   manifest.json    the tiles with views (grid order), the shared scale and offset, the settings hash
 //   <id>.las / <id>.done.json / <id>.failed.json   see jobs/tile_marker.h
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "config/job_config.h"
+#include "core/method_stats.h"
 #include "io/depth_block.h"
 #include "io/las_writer.h"
 #include "jobs/sac_block.h"
@@ -29,6 +31,8 @@ namespace sacfuse {
 
 struct TiledRunOutcome {
   SacBlockResult block;  // SAC stats summed over the tiles computed by this invocation
+  MethodStats method_stats;  // other methods: their stats summed likewise (emitted and the counters include each
+                             // tile's halo; input counts the cores only; per-view vectors by view index)
   size_t tiles_with_views = 0;
   size_t tiles_computed = 0;                                // this invocation (including failed attempts)
   size_t tiles_skipped = 0;                                 // verified done, not recomputed

@@ -9,20 +9,29 @@
 #include "core/colour_resample.h"
 #include "io/colour_raster_io.h"
 #include "io/superpixel_io.h"
+#include "jobs/fusion_methods.h"
+#include "jobs/method_geometry.h"
 #include "jobs/superpixel_cache.h"
 
 namespace sacfuse {
 namespace {
 
-// Computes and caches a view's superpixels and its colours on the depth grid unless both caches exist (then
-// nothing is read).
+// Computes and caches a view's superpixels (when `with_superpixels`) and its colours on the depth grid unless
+// those caches exist (then nothing is read).
 bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRasterSize& size,
-                      const SuperpixelOptions& options, const std::string& cache_dir) {
-  const bool spx_ok = SuperpixelCacheIsCurrent(cache_dir, view.name, size.width, size.height, options);
+                      const SuperpixelOptions& options, const std::string& cache_dir, bool with_superpixels) {
+  const bool spx_ok =
+      !with_superpixels || SuperpixelCacheIsCurrent(cache_dir, view.name, size.width, size.height, options);
   const bool rgb_ok = ColourCacheIsCurrent(cache_dir, view.name, size.width, size.height);
   if (spx_ok && rgb_ok) return false;
-  const DepthMap depth = input.ReadDepthMap(view);
   const RgbImage image = input.ReadImage(view);
+  if (!with_superpixels) {  // colours only: no depth needed
+    if (!image.empty()) {
+      WriteColourRaster(ColourCachePath(cache_dir, view.name), ResampleColourToDepthGrid(image, size.width, size.height));
+    }
+    return false;
+  }
+  const DepthMap depth = input.ReadDepthMap(view);
   bool computed = false;
   if (!spx_ok) LoadOrComputeSuperpixels(cache_dir, view.name, image, depth, options, &computed);
   if (!rgb_ok && !image.empty()) {
@@ -61,6 +70,12 @@ struct WindowRasters {
   RgbImage image;  // at depth-window resolution; empty = no colours
 };
 
+// The colours of a window from the colour cache (empty when the view has none).
+RgbImage LoadWindowColours(const View& view, const PixelWindow& w, const std::string& cache_dir) {
+  const std::string rgb_path = ColourCachePath(cache_dir, view.name);
+  return std::filesystem::exists(rgb_path) ? ReadColourRasterWindow(rgb_path, w) : RgbImage{};
+}
+
 WindowRasters LoadWindow(const DepthBlock& input, const View& view, const DepthRasterSize& size,
                          const PixelWindow& w, const std::string& cache_dir, ClusterTableCache* cluster_cache) {
   WindowRasters out;
@@ -75,8 +90,7 @@ WindowRasters LoadWindow(const DepthBlock& input, const View& view, const DepthR
       cluster_cache != nullptr ? cluster_cache->Get(spx_path)
                                : std::make_shared<const std::vector<SuperpixelCluster>>(ReadSuperpixelClusters(spx_path));
   out.superpixels = WindowSuperpixels(std::move(labels), *clusters, w);
-  const std::string rgb_path = ColourCachePath(cache_dir, view.name);
-  if (std::filesystem::exists(rgb_path)) out.image = ReadColourRasterWindow(rgb_path, w);
+  out.image = LoadWindowColours(view, w, cache_dir);
   return out;
 }
 
@@ -136,7 +150,7 @@ void AddSacStats(const SacStats& s, SacStats* total) {
 
 size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
                               const std::string& superpixel_cache_dir, const SacProgress& progress,
-                              const PlannedTile* only_tile) {
+                              const PlannedTile* only_tile, bool with_superpixels) {
   const auto& views = input.views();
   std::vector<size_t> todo;
   if (only_tile == nullptr) {
@@ -147,16 +161,75 @@ size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, con
   size_t computed = 0;
   for (size_t i = 0; i < todo.size(); ++i) {
     const size_t v = todo[i];
-    computed += EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels,
-                                 superpixel_cache_dir) ? 1 : 0;
+    computed += EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir,
+                                 with_superpixels) ? 1 : 0;
     if (progress) progress("superpixels", i + 1, todo.size());
   }
   return computed;
 }
 
+namespace {
+
+// A comparison method (jobs/fusion_methods.h) on one tile: depth and colour windows only, the block's neighbour
+// views and order restricted to the tile's views.
+TileFusionResult FuseTileWithMethod(const DepthBlock& input, const TilePlan& plan, const PlannedTile& tile,
+                                    const FusionOptions& fusion, const std::string& cache_dir, PointSink& sink) {
+  const auto& views = input.views();
+  std::vector<DepthMap> depths(tile.views.size());
+  std::vector<RgbImage> colours(tile.views.size());
+  std::vector<SacView> sac_views;
+  std::vector<uint32_t> ids;
+  for (size_t i = 0; i < tile.views.size(); ++i) {
+    const TileViewWindow& tw = tile.views[i];
+    const View& view = views[tw.view];
+    depths[i] = input.ReadDepthWindow(view, tw.window);
+    colours[i] = LoadWindowColours(view, tw.window, cache_dir);
+    SacView sv;
+    sv.view = view;
+    sv.depth = &depths[i];
+    sv.image = colours[i].empty() ? nullptr : &colours[i];
+    sv.depth_camera = WindowCamera(view.camera.Scaled(plan.depth_sizes[tw.view].width,
+                                                      plan.depth_sizes[tw.view].height), tw.window);
+    sv.world_from_cam = view.cam_from_world.Inverse();
+    sac_views.push_back(sv);
+    ids.push_back(tw.view);
+  }
+  const MethodGeometry geometry =
+      BlockMethodGeometry(input, plan.depth_sizes, plan.z_min_m, plan.z_max_m, NeighborOptionsOf(fusion.sac));
+  CoreFilterSink core_sink(plan.grid, tile.index, sink);
+  FootprintBox halo;
+  halo.Extend(tile.halo.min);
+  halo.Extend(tile.halo.max);
+  TileFusionResult result;
+  result.method_stats = RunFusionMethod(fusion, sac_views, SubsetViewPlan(geometry.plan, ids), geometry.gsd_m,
+                                        core_sink, &halo);
+  result.points_in_core = core_sink.inside();
+  result.points_outside_core = core_sink.outside();
+  // Input counts of the core only (each pixel of the block then counts in exactly one tile).
+  MethodStats& stats = result.method_stats;
+  stats.input_pixels = 0;
+  stats.input_per_view.assign(sac_views.size(), 0);
+  for (size_t i = 0; i < sac_views.size(); ++i) {
+    const DepthMap& d = depths[i];
+    for (int row = 0; row < d.height; ++row) {
+      for (int col = 0; col < d.width; ++col) {
+        if (!IsValidDepth(d.at(row, col))) continue;
+        const Eigen::Vector3d p = PixelPoint(sac_views[i], row, col, d.at(row, col));
+        if (plan.grid.TileOf(p.x(), p.y()) == tile.index) ++stats.input_per_view[i];
+      }
+    }
+    stats.input_pixels += stats.input_per_view[i];
+  }
+  return result;
+}
+
+}  // namespace
+
 TileFusionResult FuseTile(const DepthBlock& input, const TilePlan& plan, const PlannedTile& tile,
-                          const SacOptions& options, const std::string& superpixel_cache_dir, PointSink& sink,
+                          const FusionOptions& fusion, const std::string& superpixel_cache_dir, PointSink& sink,
                           ClusterTableCache* cluster_cache) {
+  if (fusion.method != "sac") return FuseTileWithMethod(input, plan, tile, fusion, superpixel_cache_dir, sink);
+  const SacOptions& options = fusion.sac;
   const auto& views = input.views();
   std::vector<WindowRasters> rasters;
   rasters.reserve(tile.views.size());

@@ -17,6 +17,7 @@ PKGS=(
   libtiff-dev              # depth rasters
   libgtest-dev libgmock-dev # tests
   parallel                 # GNU parallel: running `sacfuse tile` workers (tests/queue_e2e_test.cc)
+  chromium                 # tests only: headless screenshot of the HTML run report (tests/report_e2e_test.cc)
 )
 missing=()
 for p in "${PKGS[@]}"; do
@@ -65,4 +66,23 @@ if [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
            "skip or fail, everything else works (set SACFUSE_SKIP_OPTIONAL=1 to skip this step)" >&2
     fi
   fi
+fi
+
+# Test-time only: Node.js + npm and the npm packages of tests/las_js -- an independent LAS reader
+# (@loaders.gl/las, pinned in tests/las_js/package-lock.json) that tests/las_js_reader_test.cc runs on the files
+# we write; never used at run time. Debian's nodejs and npm are installed only when node or npm is missing (a
+# machine that already has Node.js keeps it). `npm ci` runs again only when package-lock.json changed.
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  echo "[install_deps] installing nodejs npm (test-time LAS reader)"
+  export DEBIAN_FRONTEND=noninteractive
+  if [ "${UPDATED:-0}" != "1" ]; then $SUDO apt-get update -qq; fi
+  $SUDO apt-get install -y -qq --no-install-recommends nodejs npm
+fi
+LAS_JS_DIR="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/tests/las_js"
+if [ -f "$LAS_JS_DIR/node_modules/@loaders.gl/las/package.json" ] &&
+   [ "$LAS_JS_DIR/node_modules/.package-lock.json" -nt "$LAS_JS_DIR/package-lock.json" ]; then
+  echo "[install_deps] tests/las_js npm packages present"
+else
+  echo "[install_deps] npm ci --prefix tests/las_js (test-time LAS reader)"
+  npm ci --prefix "$LAS_JS_DIR" --no-audit --no-fund
 fi

@@ -11,6 +11,7 @@
 
 #include "config/job_config.h"
 #include "core/error.h"
+#include "io/las_crs.h"
 #include "tools/bench/colmap_fusion.h"
 #include "tools/bench/colmap_fusion_report.h"
 #include "tools/cli/cli_support.h"
@@ -48,6 +49,7 @@ int ColmapFusionCommand(const ColmapFusionArgs& args) {
     }
     request.las.version_minor = config.output.las_version == "1.2" ? 2 : 4;
     request.las.scale_m = config.output.scale_m;
+    AddCrsToLasOptions(ParseProjectCrs(config.crs), &request.las);  // the job's CRS, as `sacfuse run` writes it
     RequireColmapBinary(request.colmap);  // before any output is written
     std::filesystem::create_directories(request.out_dir);
     SetupLogging(config.log.level, (std::filesystem::path(request.out_dir) / "sacfuse.log").string());

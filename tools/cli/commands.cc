@@ -16,10 +16,12 @@ int Main(int argc, char** argv) {
   AddStatusCommand(app, &exit_code);
   AddTileCommand(app, &exit_code);
   AddMergeCommand(app, &exit_code);
+  AddReportCommand(app, &exit_code);
   AddSimulateCommand(app, &exit_code);
   AddEvalCommand(app, &exit_code);
   AddColmapFusionCommand(app, &exit_code);
   AddConvertCommand(app, &exit_code);
+  AddValidateCommand(app, &exit_code);
   AddVersionCommand(app, &exit_code);
   try {
     app.parse(argc, argv);

@@ -25,12 +25,12 @@ struct ConvertArgs {
 
 int ConvertCommand(const ConvertArgs& args) {
   JobConfig config = LoadJobConfig(args.config_path);
-  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "convert");
+  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "convert", config.crs);
   const std::string out_dir = std::filesystem::absolute(args.out_dir).lexically_normal().string();
   std::filesystem::create_directories(out_dir);
   std::cout << "converting " << input->views().size() << " views of " << input->source() << " to " << args.target
             << " in " << out_dir << "\n";
-  config.input = ConvertInput(*input, args.target, out_dir);
+  config.input = ConvertInput(*input, args.target, out_dir, ConvertContext{config.crs});
   config.output.dir = (std::filesystem::path(out_dir) / "out").string();
   const std::string yaml_path = (std::filesystem::path(out_dir) / "sacfuse.yaml").string();
   WriteFileAtomically(yaml_path, DumpJobConfig(config, false));
@@ -44,7 +44,9 @@ void AddConvertCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<ConvertArgs>();
   auto* cmd = app.add_subcommand("convert", "Write the config's input block in another input format");
   cmd->add_option("CONFIG", args->config_path, "YAML config whose input to convert")->required();
-  cmd->add_option("--to", args->target, "target format (see jobs/convert_input.h)")->required();
+  std::string targets;
+  for (const std::string& t : ConversionTargets()) targets += (targets.empty() ? "" : ", ") + t;
+  cmd->add_option("--to", args->target, "target format: " + targets + " (see jobs/convert_input.h)")->required();
   cmd->add_option("--out", args->out_dir, "output folder")->required();
   cmd->callback([args, exit_code] {
     SetupLogging("warn");

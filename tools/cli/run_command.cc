@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "jobs/run_fusion.h"
+#include "jobs/report_writer.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
 #include "tools/cli/eval_runner.h"
@@ -96,6 +97,7 @@ int RunCommand(const RunArgs& args) {
       const EvalRequest request = EvalRequestFromConfig(
           config, summary.las_path, (std::filesystem::path(config.output.dir) / "eval.json").string());
       RunEvaluation(request, std::cout);
+      RewriteHtmlReportPageOrWarn(config);  // the report's page again, now with eval.json's scores
     }
     return kExitOk;
   });

@@ -1,0 +1,290 @@
+// Our LAS files read by an independent reader: the npm package @loaders.gl/las (tests/las_js, installed by
+// tools/install_deps.sh with `npm ci --prefix tests/las_js`). Files written by LasWriter (LAS 1.2 and 1.4, UTM-size
+// coordinates, colours, source IDs, CRS records) and by `sacfuse run` on a simulated tiny block (crs EPSG:25832;
+// LAS 1.4 tiled: tile files + merged fused.las; LAS 1.2 untiled) are read by tests/las_js/read_las.mjs and
+// compared with what we wrote: count, header bounds, every coordinate (to half a scale step), 8-bit colours,
+// point source IDs, the CRS record; each file must also pass `sacfuse validate`.
+// Skips with a message when node or tests/las_js/node_modules is missing, except under CI (CI=true), where that
+// is a failure: CI installs them.
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "core/crs.h"
+#include "io/las_crs.h"
+#include "io/las_reader.h"
+#include "io/las_writer.h"
+#include "io/wkt1.h"
+#include "tests/support/block_suite.h"
+
+namespace sacfuse {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using testing::RunCommand;
+using testing::SacfuseBinary;
+using testing::ShellQuote;
+using testing::TempDir;
+
+fs::path LasJsDir() {
+  if (const char* dir = std::getenv("SACFUSE_LAS_JS")) return dir;
+  return fs::path(__FILE__).parent_path() / "las_js";
+}
+
+// Why the independent reader cannot run here, or nullopt when it can.
+std::optional<std::string> ReaderUnavailable() {
+  std::string out;
+  if (RunCommand("node --version", &out) != 0) return "node is not installed (tools/install_deps.sh installs it)";
+  if (!fs::exists(LasJsDir() / "node_modules" / "@loaders.gl" / "las" / "package.json")) {
+    return (LasJsDir() / "node_modules").string() + " is missing (run `npm ci --prefix tests/las_js`, as "
+                                                    "tools/install_deps.sh does)";
+  }
+  return std::nullopt;
+}
+
+bool UnderCi() {
+  const char* ci = std::getenv("CI");
+  return ci != nullptr && std::string(ci) == "true";
+}
+
+#define REQUIRE_READER()                                                                            \
+  do {                                                                                              \
+    if (const auto why = ReaderUnavailable()) {                                                     \
+      if (UnderCi()) FAIL() << "CI=true but the independent LAS reader is not installed: " << *why; \
+      GTEST_SKIP() << "independent LAS reader unavailable: " << *why;                               \
+    }                                                                                               \
+  } while (0)
+
+// Runs tests/las_js/read_las.mjs on `las` and returns its JSON.
+json ReadWithLoadersGl(const fs::path& las, size_t max_points) {
+  const fs::path out = fs::path(las).replace_extension(".js.json");
+  const fs::path err = fs::path(las).replace_extension(".js.err");
+  const std::string cmd = "node " + ShellQuote(LasJsDir() / "read_las.mjs") + " " + ShellQuote(las) +
+                          " --max-points " + std::to_string(max_points) + " > " + ShellQuote(out) + " 2> " +
+                          ShellQuote(err);
+  std::string ignored;
+  const int rc = RunCommand(cmd, &ignored);
+  EXPECT_EQ(rc, 0) << cmd << "\n" << testing::ReadFileBytes(err);
+  std::ifstream in(out);
+  return json::parse(in);
+}
+
+// What a comparison found; printed by the tests.
+struct Comparison {
+  size_t points_compared = 0;
+  double max_coordinate_diff_steps = 0.0;  // in scale steps
+};
+
+// Compares one loader's view of `las` with our reader's (and, when given, with the points we meant to write).
+Comparison CompareLoader(const json& seen, const fs::path& las, const std::vector<LasPoint>* written = nullptr) {
+  LasHeader h;
+  const std::vector<LasPoint> ours = ReadAllLasPoints(las.string(), &h);
+  Comparison c;
+  EXPECT_FALSE(seen.contains("error")) << seen.value("error", "");
+  if (seen.contains("error")) return c;
+  EXPECT_EQ(seen.at("count").get<uint64_t>(), ours.size());
+  EXPECT_EQ(seen.at("point_format").get<int>(), h.point_format);
+  for (int a = 0; a < 3; ++a) {
+    EXPECT_EQ(seen.at("scale")[a].get<double>(), h.scale[a]);
+    EXPECT_EQ(seen.at("offset")[a].get<double>(), h.offset[a]);
+    EXPECT_EQ(seen.at("header_min")[a].get<double>(), h.min[a]);
+    EXPECT_EQ(seen.at("header_max")[a].get<double>(), h.max[a]);
+    // The box of the positions it decoded equals the header box (ours is made from the stored integers).
+    EXPECT_NEAR(seen.at("bounding_box")[0][a].get<double>(), h.min[a], h.scale[a] / 2);
+    EXPECT_NEAR(seen.at("bounding_box")[1][a].get<double>(), h.max[a], h.scale[a] / 2);
+  }
+  const size_t stride = seen.at("stride").get<size_t>();
+  const json& xs = seen.at("x");
+  const json& ys = seen.at("y");
+  const json& zs = seen.at("z");
+  const json& rgb = seen.at("rgb");
+  EXPECT_EQ(xs.size(), (ours.size() + stride - 1) / stride);
+  size_t bad = 0;
+  for (size_t j = 0; j < xs.size() && j * stride < ours.size(); ++j) {
+    const LasPoint& p = ours[j * stride];
+    const double js[3] = {xs[j].get<double>(), ys[j].get<double>(), zs[j].get<double>()};
+    for (int a = 0; a < 3; ++a) {
+      // Against what our reader decodes (the same integers: expected identical) ...
+      const double d = std::abs(js[a] - p.xyz[a]) / h.scale[a];
+      c.max_coordinate_diff_steps = std::max(c.max_coordinate_diff_steps, d);
+      if (d > 0.5 && bad++ < 5) ADD_FAILURE() << "point " << j * stride << " axis " << a << " off by " << d;
+      // ... and against the coordinate we meant to write (within the rounding to the scale).
+      if (written != nullptr) {
+        const double dw = std::abs(js[a] - (*written)[j * stride].xyz[a]) / h.scale[a];
+        if (dw > 0.5 + 1e-6 && bad++ < 5) ADD_FAILURE() << "point " << j * stride << " axis " << a << " off by " << dw;
+      }
+    }
+    if (seen.at("has_color").get<bool>()) {
+      for (int k = 0; k < 3; ++k) {
+        if (rgb[j][k].get<int>() != p.rgb[k] / 256 && bad++ < 5) {
+          ADD_FAILURE() << "point " << j * stride << " colour " << k << ": " << rgb[j][k] << " vs " << p.rgb[k] / 256;
+        }
+      }
+    }
+    ++c.points_compared;
+  }
+  EXPECT_EQ(bad, 0u);
+  return c;
+}
+
+// Point source IDs and CRS records as the script read them.
+void CompareRaw(const json& raw, const fs::path& las, const ProjectCrs& crs) {
+  LasHeader h;
+  const std::vector<LasPoint> ours = ReadAllLasPoints(las.string(), &h);
+  const json& ids = raw.at("point_source_id");
+  const size_t stride = ids.size() > 0 ? (ours.size() + ids.size() - 1) / ids.size() : 1;
+  size_t bad = 0;
+  for (size_t j = 0; j < ids.size() && j * stride < ours.size(); ++j) {
+    if (ids[j].get<int>() != ours[j * stride].point_source_id && bad++ < 5) {
+      ADD_FAILURE() << "point " << j * stride << " source ID " << ids[j] << " vs " << ours[j * stride].point_source_id;
+    }
+  }
+  EXPECT_EQ(bad, 0u);
+  const bool wkt_bit = (raw.at("global_encoding").get<int>() & 0x10) != 0;
+  if (h.version_minor == 4) {
+    EXPECT_EQ(wkt_bit, crs.georeferenced());
+    if (crs.georeferenced()) {
+      ASSERT_TRUE(raw.at("wkt").is_string());
+      EXPECT_EQ(raw.at("wkt").get<std::string>(), ProjectCrsWkt1(crs));
+      EXPECT_EQ(WktHorizontalEpsg(ParseWkt1(raw.at("wkt").get<std::string>())), crs.epsg);
+    }
+    EXPECT_TRUE(raw.at("geokeys").is_null());
+  } else {
+    EXPECT_FALSE(wkt_bit);
+    EXPECT_TRUE(raw.at("wkt").is_null());
+    if (crs.kind == ProjectCrs::Kind::kUtm) {
+      const std::vector<int> keys = raw.at("geokeys").get<std::vector<int>>();
+      bool found = false;
+      for (size_t k = 4; k + 3 < keys.size(); k += 4) {
+        found = found || (keys[k] == 3072 && keys[k + 1] == 0 && keys[k + 3] == crs.epsg);
+      }
+      EXPECT_TRUE(found) << "no ProjectedCSTypeGeoKey = " << crs.epsg;
+      EXPECT_NE(raw.at("geo_ascii").get<std::string>().find(crs.Name()), std::string::npos);
+    }
+  }
+}
+
+void ExpectValid(const fs::path& las) {
+  std::string out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " validate " + ShellQuote(las), &out), 0) << out;
+  EXPECT_NE(out.find(": ok ("), std::string::npos) << out;
+}
+
+std::vector<LasPoint> KnownPoints(size_t n) {
+  std::vector<LasPoint> pts(n);
+  for (size_t i = 0; i < n; ++i) {
+    LasPoint& p = pts[i];
+    // UTM zone 32 coordinates (Dortmund), spread over ~2 km so that all digits vary.
+    p.xyz = {391234.567 + 1.731 * i + 0.0004 * (i % 3), 5706543.21 + 0.917 * i, 87.5 + 0.013 * (i % 997)};
+    p.rgb = {static_cast<uint16_t>(256 * (i % 256)), static_cast<uint16_t>(256 * ((7 * i) % 256)),
+             static_cast<uint16_t>(256 * ((13 * i + 5) % 256))};
+    p.point_source_id = static_cast<uint16_t>(1 + (i * 37) % 65535);
+  }
+  return pts;
+}
+
+TEST(LasJsReaderTest, ReadsOurWriterFilesExactly) {
+  REQUIRE_READER();
+  TempDir dir;
+  const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
+  const std::vector<LasPoint> pts = KnownPoints(1500);
+  for (int minor : {2, 4}) {
+    SCOPED_TRACE("LAS 1." + std::to_string(minor));
+    const fs::path path = dir / ("ours_1" + std::to_string(minor) + ".las");
+    LasWriterOptions o;
+    o.version_minor = minor;
+    AddCrsToLasOptions(crs, &o);
+    {
+      LasWriter w(path.string(), o);
+      w.WritePoints(pts.data(), pts.size());
+      w.Close();
+    }
+    const json seen = ReadWithLoadersGl(path, 100000);  // every point
+    const Comparison c = CompareLoader(seen.at("loaders").at("laz-rs"), path, &pts);
+    EXPECT_EQ(c.points_compared, pts.size());
+    std::printf("[ las_js   ] %s: laz-rs read %zu points, max coordinate difference %.3g scale steps\n",
+                path.filename().c_str(), c.points_compared, c.max_coordinate_diff_steps);
+    const json& perf = seen.at("loaders").at("laz-perf");
+    if (minor == 2) {
+      CompareLoader(perf, path, &pts);
+    } else {
+      // The package's default loader (laz-perf) reads LAS <= 1.3 only: it must refuse, not misread.
+      ASSERT_TRUE(perf.contains("error")) << "laz-perf read a LAS 1.4 file; compare it like laz-rs";
+      std::printf("[ las_js   ] %s: laz-perf (the default LASLoader) refuses LAS 1.4: %s\n", path.filename().c_str(),
+                  perf.at("error").get<std::string>().c_str());
+    }
+    CompareRaw(seen.at("raw"), path, crs);
+    ExpectValid(path);
+  }
+}
+
+class LasJsRunTest : public testing::TinyBlockSuite {
+ protected:
+  static void SetUpTestSuite() {
+    if (!ReaderUnavailable()) SimulateBlock();
+  }
+  static fs::path WriteConfig(const std::string& name, const std::string& output_extra, const std::string& extra) {
+    const fs::path path = Config(name);
+    std::ofstream(path) << "crs: EPSG:25832\n"
+                        << "input: {format: colmap, path: " << Block().string() << "}\n"
+                        << "output: {dir: " << Out(name).string() << output_extra << "}\n"
+                        << extra;
+    return path;
+  }
+  static void CheckFile(const fs::path& las, const ProjectCrs& crs, int minor) {
+    SCOPED_TRACE(las.string());
+    LasHeader h;
+    {
+      LasReader reader(las.string());
+      h = reader.header();
+    }
+    EXPECT_EQ(h.version_minor, minor);
+    EXPECT_EQ(ReadLasCrs(h).epsg, crs.epsg);
+    const json seen = ReadWithLoadersGl(las, 20000);
+    const Comparison c = CompareLoader(seen.at("loaders").at("laz-rs"), las);
+    if (minor == 2) CompareLoader(seen.at("loaders").at("laz-perf"), las);
+    CompareRaw(seen.at("raw"), las, crs);
+    ExpectValid(las);
+    std::printf("[ las_js   ] %s (%llu points): laz-rs agrees on %zu sampled points, max difference %.3g steps\n",
+                las.filename().c_str(), static_cast<unsigned long long>(h.point_count), c.points_compared,
+                c.max_coordinate_diff_steps);
+  }
+};
+
+TEST_F(LasJsRunTest, TiledLas14RunWithCrsIsReadByLoadersGl) {
+  REQUIRE_READER();
+  std::string out;
+  const fs::path config = WriteConfig("run14", "", "tiling: {tile_size_m: 30}\n");
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
+  const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
+  CheckFile(Out("run14") / "fused.las", crs, 4);
+  size_t tiles = 0;
+  for (const auto& e : fs::directory_iterator(Out("run14") / "tiles")) {
+    if (e.path().extension() == ".las" && tiles++ < 2) CheckFile(e.path(), crs, 4);
+  }
+  EXPECT_GT(tiles, 1u);
+  // `sacfuse merge` again writes the same CRS.
+  fs::remove(Out("run14") / "fused.las");
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " merge " + ShellQuote(config), &out), 0) << out;
+  CheckFile(Out("run14") / "fused.las", crs, 4);
+}
+
+TEST_F(LasJsRunTest, Las12RunWithCrsIsReadByLoadersGl) {
+  REQUIRE_READER();
+  std::string out;
+  const fs::path config = WriteConfig("run12", ", las_version: \"1.2\"", "");
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
+  CheckFile(Out("run12") / "fused.las", ParseProjectCrs("EPSG:25832"), 2);
+}
+
+}  // namespace
+}  // namespace sacfuse
