@@ -2,6 +2,7 @@
 // --print-defaults, and part of the result-affecting settings (a changed CRS recomputes tiles).
 #include <gtest/gtest.h>
 
+#include "config/config_test_util.h"
 #include "config/job_config.h"
 #include "config/result_settings.h"
 #include "core/error.h"
@@ -9,14 +10,7 @@
 namespace sacfuse {
 namespace {
 
-std::string ErrorOf(const std::string& yaml) {
-  try {
-    ParseJobConfig(yaml, "job.yaml", "/base");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::string& yaml) { return ConfigErrorOf(yaml); }
 
 TEST(JobConfigCrsTest, DefaultsToNotGeoreferenced) {
   const JobConfig c = ParseJobConfig("input: {path: ws}\n", "job.yaml", "/base");

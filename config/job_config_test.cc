@@ -1,4 +1,5 @@
 // Tests of YAML config parsing: defaults, paths, and the exact error messages users see.
+#include "config/config_test_util.h"
 #include "config/job_config.h"
 
 #include <gtest/gtest.h>
@@ -8,14 +9,7 @@
 namespace sacfuse {
 namespace {
 
-std::string ErrorOf(const std::string& yaml) {
-  try {
-    ParseJobConfig(yaml, "job.yaml", "/base");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::string& yaml) { return ConfigErrorOf(yaml); }
 
 TEST(JobConfigTest, MinimalConfigTakesDefaultsAndResolvesPaths) {
   const JobConfig c = ParseJobConfig("input: {format: colmap, path: ws}\noutput: {dir: out}\n", "job.yaml", "/base");

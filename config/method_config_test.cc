@@ -3,6 +3,7 @@
 // --print-defaults, and part of the result-affecting settings of tiled runs.
 #include <gtest/gtest.h>
 
+#include "config/config_test_util.h"
 #include "config/job_config.h"
 #include "config/result_settings.h"
 #include "core/error.h"
@@ -10,14 +11,7 @@
 namespace sacfuse {
 namespace {
 
-std::string ErrorOf(const std::string& yaml) {
-  try {
-    ParseJobConfig(yaml, "job.yaml", "/base");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::string& yaml) { return ConfigErrorOf(yaml); }
 
 TEST(MethodConfigTest, EachMethodIsAllowedAndItsKeysReachTheOptions) {
   for (const char* method : {"sac", "union", "consistency", "disparity_normal", "tsdf", "multiray"}) {

@@ -1,20 +1,14 @@
 // Config keys of the `rasters` input (input.cameras, input.depth_kind): parsing, paths and messages.
 #include <gtest/gtest.h>
 
+#include "config/config_test_util.h"
 #include "config/job_config.h"
 #include "core/error.h"
 
 namespace sacfuse {
 namespace {
 
-std::string ErrorOf(const std::string& yaml) {
-  try {
-    ParseJobConfig(yaml, "job.yaml", "/base");
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string ErrorOf(const std::string& yaml) { return ConfigErrorOf(yaml); }
 
 TEST(RasterInputConfigTest, KeysParseWithDefaultsAndResolvedPaths) {
   const JobConfig d = ParseJobConfig("input: {format: rasters, path: blk}\n", "job.yaml", "/base");
