@@ -95,7 +95,9 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddInt("disparity_normal.normal_radius_px", &dn.normal_radius_px,
            "normals are plane fits to the depth in (2r+1)^2 pixels; r in 1-10");
   TsdfOptions& ts = c->fusion.tsdf;  // method tsdf
-  s.AddDouble("tsdf.voxel_size_gsd", &ts.voxel_size_gsd, "voxel edge, in GSDs of the block; > 0");
+  s.AddDouble("tsdf.voxel_size_gsd", &ts.voxel_size_gsd,
+              "voxel edge, in GSDs of the block (median over views of the principal ray's depth at the median "
+              "sparse-point height / focal); > 0");
   s.AddDouble("tsdf.truncation_gsd", &ts.truncation_gsd, "truncation distance, GSDs; > tsdf.voxel_size_gsd");
   s.AddDouble("tsdf.min_weight", &ts.min_weight, "observations both voxels of a zero crossing need; >= 1");
   s.AddDouble("tsdf.max_memory_gb", &ts.max_memory_gb,

@@ -13,15 +13,6 @@ constexpr int kRowsPerBlock = 16;
 constexpr int kBlocksPerBatch = 64;
 constexpr int kMaxCoverageHops = 4;  // chains of choices longer than this are treated as not covering
 
-std::array<uint8_t, 3> SampleColor(const SacView& view, int row, int col) {
-  if (view.image == nullptr || view.image->empty()) return {128, 128, 128};
-  const RgbImage& img = *view.image;
-  const int ic = std::min(img.width - 1, static_cast<int>((col + 0.5) * img.width / view.depth->width));
-  const int ir = std::min(img.height - 1, static_cast<int>((row + 0.5) * img.height / view.depth->height));
-  std::array<uint8_t, 3> rgb;
-  for (int c = 0; c < 3; ++c) rgb[c] = img.at(ir, ic, std::min(c, img.channels - 1));
-  return rgb;
-}
 
 }  // namespace
 
@@ -92,7 +83,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         }
         FusedPoint p;
         p.point_in_world = point;
-        p.rgb = SampleColor(view, row, col);
+        p.rgb = PixelColour(view, row, col);
         p.view_index = view.view.index;
         out.push_back(p);
       }

@@ -63,8 +63,6 @@ inline Eigen::Vector3d PixelPoint(const SacView& view, int row, int col, double 
   return view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, depth_m);
 }
 
-// Colour of depth pixel (row, col): nearest image pixel at the pixel centre (the image may have any resolution:
-// the same rule as SAC's collapse and the colour cache); grey (128) without an image.
-std::array<uint8_t, 3> PixelColour(const SacView& view, int row, int col);
+// PixelColour (core/sac_view.h): the colour of a depth pixel, the same rule as SAC's collapse.
 
 }  // namespace sacfuse

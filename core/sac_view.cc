@@ -1,5 +1,7 @@
 #include "core/sac_view.h"
 
+#include <algorithm>
+
 namespace sacfuse {
 
 SacView MakeSacView(const View& view, const DepthMap* depth, const SuperpixelMap* superpixels, const RgbImage* image,
@@ -27,6 +29,16 @@ DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_wor
   out.z_m = p.z();
   out.stored_depth_m = view.depth->at(out.row, out.col);
   return out;
+}
+
+std::array<uint8_t, 3> PixelColour(const SacView& view, int row, int col) {
+  if (view.image == nullptr || view.image->empty()) return {128, 128, 128};
+  const RgbImage& img = *view.image;
+  const int ic = std::min(img.width - 1, static_cast<int>((col + 0.5) * img.width / view.depth->width));
+  const int ir = std::min(img.height - 1, static_cast<int>((row + 0.5) * img.height / view.depth->height));
+  std::array<uint8_t, 3> rgb;
+  for (int c = 0; c < 3; ++c) rgb[c] = img.at(ir, ic, std::min(c, img.channels - 1));
+  return rgb;
 }
 
 }  // namespace sacfuse

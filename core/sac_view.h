@@ -1,7 +1,9 @@
 #pragma once
 // What SAC needs of one view, at depth-map resolution. The rasters are owned by the caller (jobs/), which decides
 // what is in memory; core never reads files.
+#include <array>
 #include <cmath>
+#include <cstdint>
 
 #include "core/camera.h"
 #include "core/consistency_graph.h"
@@ -37,5 +39,9 @@ struct DepthLookup {
   float stored_depth_m = 0.0f;  // the depth map's value at the pixel (<= 0 invalid)
 };
 DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_world);
+
+// The colour of depth pixel (row, col): the image pixel under its centre (the image may have another resolution
+// than the depth raster); mid grey when the view has no image.
+std::array<uint8_t, 3> PixelColour(const SacView& view, int row, int col);
 
 }  // namespace sacfuse

@@ -156,7 +156,7 @@ std::string CacheDir(const JobConfig& config) {
              : config.fusion.superpixel_cache_dir;
 }
 
-// Tiled SAC: per-tile files, resume, merge (jobs/tiled_run.h).
+// Tiled (any method): per-tile files, resume, merge (jobs/tiled_run.h).
 void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
               const std::vector<std::string>& rerun_tiles, RunSummary* summary) {
   const TilePlan plan = SharedTilePlan(config, input);
@@ -186,7 +186,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
                tiled.failed.size());
 }
 
-// Untiled SAC or the union, streamed into one LAS writer.
+// Untiled: SAC, the union (streamed view by view) or a comparison method, into one LAS writer.
 void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
                 RunSummary* summary) {
   const auto& views = input.views();
