@@ -21,18 +21,11 @@ using testing::NadirView;
 using testing::PlaneDepth;
 using Block = testing::MethodBlock;
 
-constexpr double kHeight = 500.0;
-constexpr double kGsd = kHeight / 3000.0;
-constexpr double kShift = 48 * kGsd;  // 8 m
+constexpr double kHeight = testing::kNadirHeightM;
+constexpr double kGsd = testing::kNadirGsdM;
+constexpr double kShift = testing::kWholePixelShiftM;
 
-size_t UniqueCells(const std::vector<FusedPoint>& points) {
-  std::set<std::pair<long, long>> cells;
-  for (const FusedPoint& p : points) {
-    cells.emplace(std::lround((p.point_in_world.x() - kEast) / kGsd - 0.5),
-                  std::lround((p.point_in_world.y() - kNorth) / kGsd - 0.5));
-  }
-  return cells.size();
-}
+size_t UniqueCells(const std::vector<FusedPoint>& points) { return testing::UniqueGroundCells(points, kGsd); }
 
 TEST(DisparityNormalFusionTest, PointsSeenByTwoMoreViewsAreAveragedOnceAndTheRestDropped) {
   Block block;

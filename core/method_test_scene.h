@@ -1,15 +1,35 @@
 #pragma once
 // Test-only helpers for the comparison methods' tests (header-only, used by core/*_test.cc): blocks of views
 // with depth maps and no superpixels, and view plans given by hand. Scenes come from core/sac_test_scene.h.
+#include <cmath>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "core/method_views.h"
 #include "core/raster.h"
+#include "core/sac_test_scene.h"
 #include "core/sac_view.h"
 
 namespace sacfuse::testing {
+
+// Nadir views of the per-pixel methods' tests: flying height, its GSD (f = 3000 px) and a shift between views of
+// a whole number of pixels, so reprojected pixel centres land on pixel centres.
+constexpr double kNadirHeightM = 500.0;
+constexpr double kNadirGsdM = kNadirHeightM / 3000.0;
+constexpr double kWholePixelShiftM = 48 * kNadirGsdM;  // 8 m
+
+// Distinct ground cells of one GSD (origin at the scene's east/north corner) that the points fall in.
+inline size_t UniqueGroundCells(const std::vector<FusedPoint>& points, double gsd_m) {
+  std::set<std::pair<long, long>> cells;
+  for (const FusedPoint& p : points) {
+    cells.emplace(std::lround((p.point_in_world.x() - kEast) / gsd_m - 0.5),
+                  std::lround((p.point_in_world.y() - kNorth) / gsd_m - 0.5));
+  }
+  return cells.size();
+}
 
 // Owns views and depth maps (no superpixels: the comparison methods do not read them).
 struct MethodBlock {
