@@ -11,6 +11,8 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "tests/support/error_of.h"
+
 #include "core/backproject.h"
 #include "core/error.h"
 #include "tests/support/test_support.h"
@@ -68,19 +70,7 @@ struct CollectingSink : PointSink {
   void Write(const FusedPoint* p, size_t n) override { points.insert(points.end(), p, p + n); }
 };
 
-template <typename Fn>
-std::string InputErrorOf(Fn fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
-}
+using testing::InputErrorOf;
 
 TEST(OpenMvsBlockTest, CameraConventionsKnownAnswer) {
   DmapHeader h;

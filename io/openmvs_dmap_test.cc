@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/error_of.h"
+
 #include "core/error.h"
 #include "tests/support/test_support.h"
 
@@ -100,20 +102,7 @@ DmapContents HandMadeContents() {
   return c;
 }
 
-// The message of the InputError `fn` throws ("" and a test failure when it throws nothing or another type).
-template <typename Fn>
-std::string InputErrorOf(Fn fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an InputError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "no exception";
-  return "";
-}
+using testing::InputErrorOf;
 
 TEST(OpenMvsDmapTest, ReadsAHandMadeFileWithEveryMap) {
   TempDir dir;
