@@ -71,6 +71,13 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddInt("fusion.smoothness_rounds", &f.smoothness_rounds, "rounds of that smoothness");
   s.AddInt("fusion.min_consistent_views", &f.min_consistent_views,
            "outliers: min views (own included) agreeing with a point");
+  s.AddString("fusion.combine", &f.combine,
+              "emitted depth: average (selected pixel, depth averaged over agreeing views) | select (as selected)",
+              {"average", "select"});
+  s.AddDouble("fusion.combine_gate_gsd", &f.combine_gate_gsd, "average: agreement gate along the ray, local GSDs");
+  s.AddInt("fusion.combine_max_views", &f.combine_max_views, "average: views consulted per view");
+  s.AddDouble("fusion.combine_max_view_angle_deg", &f.combine_max_view_angle_deg,
+              "average: max angle between those views' directions, deg");
   s.AddString("fusion.superpixel_cache_dir", &c->fusion.superpixel_cache_dir,
               "where superpixels are stored and reused; empty = <output.dir>/superpixels");
   SuperpixelOptions& sp = f.superpixels;

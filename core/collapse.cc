@@ -4,6 +4,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/depth_combine.h"
 #include "core/sac_tolerance.h"
 
 namespace sacfuse {
@@ -18,11 +19,16 @@ constexpr int kMaxCoverageHops = 4;  // chains of choices longer than this are t
 
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
                        const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
-                       const SacOptions& options, PointSink& sink) {
+                       const std::vector<std::vector<uint32_t>>& combine_views,
+                       const std::vector<double>& noise_factor, const SacOptions& options,
+                       const std::function<bool(const Eigen::Vector3d&)>& owner, PointSink& sink) {
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
   const int num_blocks = (depth.height + kRowsPerBlock - 1) / kRowsPerBlock;
   CollapseStats total;
+  const bool combine = options.combine == "average";
+  DepthCombineOptions combine_options;
+  combine_options.gate_gsd = options.combine_gate_gsd;
   std::vector<std::vector<FusedPoint>> block_points(kBlocksPerBatch);
   std::vector<CollapseStats> block_stats(kBlocksPerBatch);
 
@@ -34,9 +40,14 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
       for (int col = 0; col < depth.width; ++col) {
         const float d = depth.at(row, col);
         if (!IsValidDepth(d)) continue;
-        ++stats.input_pixels;
         const Eigen::Vector3d point =
             view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, static_cast<double>(d));
+        if (owner && !owner(point)) {
+          ++stats.not_owned;
+          continue;
+        }
+        ++stats.input_pixels;
+
         const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
         if (label != v) {
           // Follow the choices: the chosen view's cluster there may itself have chosen another view.
@@ -83,6 +94,11 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         }
         FusedPoint p;
         p.point_in_world = point;
+        if (combine) {
+          const CombinedDepth refined = CombineDepth(views, v, col + 0.5, row + 0.5, d, combine_views[v], noise_factor,
+                                                          combine_options);
+          p.point_in_world = view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, refined.depth_m);
+        }
         p.rgb = PixelColour(view, row, col);
         p.view_index = view.view.index;
         out.push_back(p);

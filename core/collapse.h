@@ -11,6 +11,7 @@
 // (free space); neighbours in which it is occluded cannot judge it. So blunders, floaters and points seen by one
 // view only are removed, while surfaces that only two views can see are kept when those two agree.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/point.h"
@@ -21,24 +22,31 @@
 namespace sacfuse {
 
 struct CollapseStats {
-  uint64_t input_pixels = 0;      // valid depth pixels
+  uint64_t input_pixels = 0;      // valid depth pixels (that the owner accepts)
   uint64_t collapsed = 0;         // dropped: covered by the view their cluster chose
   uint64_t kept_uncovered = 0;    // their cluster chose another view, which does not emit them: kept (coverage)
   uint64_t outliers = 0;          // dropped: too few consistent views
   uint64_t emitted = 0;
+  uint64_t not_owned = 0;         // valid pixels the owner rejected (another tile's), not counted above
   CollapseStats& operator+=(const CollapseStats& o) {
     input_pixels += o.input_pixels;
     collapsed += o.collapsed;
     kept_uncovered += o.kept_uncovered;
     outliers += o.outliers;
     emitted += o.emitted;
+    not_owned += o.not_owned;
     return *this;
   }
 };
 
-// Emits the fused points of view `v` to `sink` in row order (deterministic for any thread count).
+// Emits the fused points of view `v` to `sink` in row order (deterministic for any thread count). `neighbors`
+// judge outliers; `combine_views` (fusion.combine: average) refine the emitted depths, weighted with the views'
+// `noise_factor` (core/view_noise.h; empty = equal). Pixels whose own point `owner` rejects are skipped and not
+// counted (empty owner = all pixels).
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
                        const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
-                       const SacOptions& options, PointSink& sink);
+                       const std::vector<std::vector<uint32_t>>& combine_views,
+                       const std::vector<double>& noise_factor, const SacOptions& options,
+                       const std::function<bool(const Eigen::Vector3d&)>& owner, PointSink& sink);
 
 }  // namespace sacfuse

@@ -6,6 +6,7 @@
 #include "core/netlets.h"
 #include "core/sac_nodes.h"
 #include "core/view_neighbors.h"
+#include "core/view_noise.h"
 
 namespace sacfuse {
 namespace {
@@ -27,7 +28,7 @@ class StageTimer {
 }  // namespace
 
 SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& options, PointSink& sink,
-                      const SacProgress& progress) {
+                      const SacProgress& progress, const PixelOwner& owner) {
   ValidateSacOptions(options);
   SacStats stats;
   StageTimer timer(&stats);
@@ -35,6 +36,11 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   stats.nodes = nodes.nodes.size();
   stats.valid_nodes = nodes.num_valid();
   const auto neighbors = SelectNeighborViews(views, nodes, options);
+  SacOptions combine_selection = options;
+  combine_selection.max_neighbor_views = options.combine_max_views;
+  combine_selection.max_view_angle_deg = options.combine_max_view_angle_deg;
+  const auto combine_views = options.combine == "average" ? SelectNeighborViews(views, nodes, combine_selection)
+                                                          : std::vector<std::vector<uint32_t>>(views.size());
   timer.Mark("nodes");
   const Correspondences correspondences = FindCorrespondences(views, nodes, neighbors, options);
   stats.mean_correspondences =
@@ -46,9 +52,17 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   timer.Mark("netlets");
   const std::vector<uint32_t> chosen = LabelNetlets(views, nodes, netlets, options, &stats.labeling);
   timer.Mark("labelling");
+  std::vector<double> noise_factor;
+  if (options.combine == "average") {
+    ViewNoiseOptions noise_options;
+    noise_options.gate_gsd = options.combine_gate_gsd;
+    noise_factor = EstimateViewNoiseFactors(views, combine_views, noise_options);
+    stats.noise_factor = noise_factor;
+    timer.Mark("noise");
+  }
   stats.emitted_per_view.assign(views.size(), 0);
   for (uint32_t v = 0; v < views.size(); ++v) {
-    const CollapseStats s = EmitView(v, views, nodes, chosen, neighbors, options, sink);
+    const CollapseStats s = EmitView(v, views, nodes, chosen, neighbors, combine_views, noise_factor, options, owner, sink);
     stats.emitted_per_view[v] = s.emitted;
     stats.collapse += s;
     if (progress) progress("collapse", v + 1, views.size());

@@ -21,13 +21,20 @@ struct SacStats {
   LabelingStats labeling;
   CollapseStats collapse;
   std::vector<uint64_t> emitted_per_view;  // indexed like the input views
+  // fusion.combine: average: the estimated depth noise factor k per view (sigma = k z^2 / focal, metres;
+  // core/view_noise.h), indexed like the input views; empty otherwise.
+  std::vector<double> noise_factor;
   std::vector<std::pair<std::string, double>> stage_seconds;
 };
 
 using SacProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
+// Which pixels this run emits, judged on the pixel's own back-projected point (before the averaging combine moves
+// it along its ray), so that tiles sharing a halo emit every pixel exactly once although their averages differ
+// slightly. Empty = every pixel.
+using PixelOwner = std::function<bool(const Eigen::Vector3d& point_in_world)>;
 
 // Fuses `views` and streams the points to `sink`, view by view in input order. Deterministic for any thread count.
 SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& options, PointSink& sink,
-                      const SacProgress& progress = {});
+                      const SacProgress& progress = {}, const PixelOwner& owner = {});
 
 }  // namespace sacfuse

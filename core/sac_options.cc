@@ -24,6 +24,10 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("fusion.smoothness_weight", o.smoothness_weight, 0.0);
   c.InRange("fusion.smoothness_rounds", o.smoothness_rounds, 0, 20);
   c.InRange("fusion.min_consistent_views", o.min_consistent_views, 1, 64);
+  c.OneOf("fusion.combine", o.combine, {"select", "average"});
+  c.Greater("fusion.combine_gate_gsd", o.combine_gate_gsd, 0.0);
+  c.InRange("fusion.combine_max_views", o.combine_max_views, 1, 64);
+  c.InRange("fusion.combine_max_view_angle_deg", o.combine_max_view_angle_deg, 0.0, 180.0);
   c.Absorb([&] { ValidateSuperpixelOptions(o.superpixels); });
   c.ThrowIfFailed("fusion options");
 }

@@ -44,6 +44,13 @@ struct SacOptions {
   // --- Collapse and outliers.
   int min_consistent_views = 3;         // a point must agree with this many views (its own included), fewer
                                         // where fewer can observe it (see collapse.h)
+  //   select:  an emitted pixel keeps its selected view's depth (the paper's collapse, no averaging).
+  //   average: it keeps the selected view's pixel (same point count) with its depth along that ray averaged
+  //            over the agreeing depth maps (core/depth_combine.h).
+  std::string combine = "average";
+  double combine_gate_gsd = 12.0;       // average: depth maps within this many local GSDs along the ray take part
+  int combine_max_views = 24;           // average: views consulted per view (chosen like the neighbour views)
+  double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
   // --- Superpixels (nodes).
   SuperpixelOptions superpixels;
 };

@@ -96,6 +96,12 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                 {"points_emitted", s.sac.collapse.emitted},
                 {"superpixels_computed", s.superpixels_computed},
                 {"stage_seconds", stages}};
+    if (!s.sac.noise_factor.empty()) {
+      // Estimated depth noise of the views (core/view_noise.h): sigma = k z^2 / focal metres.
+      std::vector<double> k = s.sac.noise_factor;
+      std::sort(k.begin(), k.end());
+      j["sac"]["noise_factor"] = {{"min", k.front()}, {"median", k[k.size() / 2]}, {"max", k.back()}};
+    }
   }
   if (s.tiles_run > 0) {
     nlohmann::json failed = nlohmann::json::array();

@@ -94,6 +94,21 @@ WindowRasters LoadWindow(const DepthBlock& input, const View& view, const DepthR
   return out;
 }
 
+// Forwards every point, counting them.
+class CountingSink : public PointSink {
+ public:
+  explicit CountingSink(PointSink& next) : next_(next) {}
+  void Write(const FusedPoint* points, size_t count) override {
+    count_ += count;
+    next_.Write(points, count);
+  }
+  uint64_t count() const { return count_; }
+
+ private:
+  PointSink& next_;
+  uint64_t count_ = 0;
+};
+
 // Forwards the points of one tile's core; the rest belong to neighbouring tiles.
 class CoreFilterSink : public PointSink {
  public:
@@ -249,11 +264,16 @@ TileFusionResult FuseTile(const DepthBlock& input, const TilePlan& plan, const P
     sv.world_from_cam = view.cam_from_world.Inverse();
     sac_views.push_back(sv);
   }
-  CoreFilterSink core_sink(plan.grid, tile.index, sink);
+  // Pixels are owned by the tile core their own point falls in (before SAC's averaging moves it a little along
+  // its ray, differently in each tile), so each is emitted by exactly one tile.
+  const TileGrid& grid = plan.grid;
+  const TileIndex index = tile.index;
+  CountingSink counted(sink);
   TileFusionResult result;
-  result.stats = RunSacFusion(sac_views, options, core_sink);
-  result.points_in_core = core_sink.inside();
-  result.points_outside_core = core_sink.outside();
+  result.stats = RunSacFusion(sac_views, options, counted, {},
+                              [&](const Eigen::Vector3d& p) { return grid.TileOf(p.x(), p.y()) == index; });
+  result.points_in_core = counted.count();
+  result.points_outside_core = result.stats.collapse.not_owned;
   return result;
 }
 

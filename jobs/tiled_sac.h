@@ -29,7 +29,8 @@ struct TileFusionResult {
   SacStats stats;                    // sac: of the tile's halo (emitted_per_view indexed like tile.views)
   MethodStats method_stats;          // other methods: of the tile's halo (emitted_per_view indexed like tile.views)
   uint64_t points_in_core = 0;       // written to the sink
-  uint64_t points_outside_core = 0;  // emitted in the halo, left to the neighbouring tiles
+  uint64_t points_outside_core = 0;  // in the halo, left to the neighbouring tiles (SAC: valid pixels whose own
+                                     // point lies there; other methods: points emitted there)
 };
 
 // Runs fusion.method on one tile (which must have views) and writes the points of its core to `sink`. Needs the

@@ -1,0 +1,98 @@
+#include "core/depth_combine.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sacfuse {
+
+bool SampleDepth(const DepthMap& depth, double u, double v, double max_spread_m, double* depth_m) {
+  if (!(u >= 0 && v >= 0 && u < depth.width && v < depth.height)) return false;
+  // Bilinear between the four pixel centres around (u, v).
+  const double x = u - 0.5, y = v - 0.5;
+  const int c0 = static_cast<int>(std::floor(x)), r0 = static_cast<int>(std::floor(y));
+  if (c0 >= 0 && r0 >= 0 && c0 + 1 < depth.width && r0 + 1 < depth.height) {
+    const float d00 = depth.at(r0, c0), d01 = depth.at(r0, c0 + 1);
+    const float d10 = depth.at(r0 + 1, c0), d11 = depth.at(r0 + 1, c0 + 1);
+    if (IsValidDepth(d00) && IsValidDepth(d01) && IsValidDepth(d10) && IsValidDepth(d11)) {
+      const float lo = std::min(std::min(d00, d01), std::min(d10, d11));
+      const float hi = std::max(std::max(d00, d01), std::max(d10, d11));
+      if (hi - lo <= max_spread_m) {
+        const double fx = x - c0, fy = y - r0;
+        *depth_m = (1 - fy) * ((1 - fx) * d00 + fx * d01) + fy * ((1 - fx) * d10 + fx * d11);
+        return true;
+      }
+    }
+  }
+  const float nearest = depth.at(static_cast<int>(v), static_cast<int>(u));
+  if (!IsValidDepth(nearest)) return false;
+  *depth_m = nearest;
+  return true;
+}
+
+namespace {
+
+// f(t) of the header for view b at world point x: stored depth minus the point's depth; false when b has no
+// surface there.
+bool SurfaceOffset(const SacView& b, const Eigen::Vector3d& point_in_world, double max_spread_m, double* offset_m,
+                   double* z_m) {
+  const Eigen::Vector3d p = b.view.cam_from_world * point_in_world;
+  if (p.z() <= 0) return false;
+  const Eigen::Vector2d uv = b.depth_camera.Project(p);
+  double stored = 0.0;
+  if (!SampleDepth(*b.depth, uv.x(), uv.y(), max_spread_m, &stored)) return false;
+  *offset_m = stored - p.z();
+  *z_m = p.z();
+  return true;
+}
+
+}  // namespace
+
+bool IntersectRay(const SacView& b, const Eigen::Vector3d& at_depth, const Eigen::Vector3d& at_next, double depth_m,
+                  double step_m, double max_offset_m, double min_slope, RayHit* hit) {
+  const double spread_m = 2.0 * max_offset_m;
+  double f0 = 0, z0 = 0, f1 = 0, z1 = 0;
+  if (!SurfaceOffset(b, at_depth, spread_m, &f0, &z0)) return false;
+  if (std::abs(f0) > spread_m) return false;  // another surface (occluder, occluded, blunder)
+  if (!SurfaceOffset(b, at_next, spread_m, &f1, &z1)) return false;
+  const double slope = (f1 - f0) / step_m;
+  if (std::abs(slope) < min_slope) return false;
+  const double t = depth_m - f0 / slope;
+  if (std::abs(t - depth_m) > max_offset_m) return false;
+  hit->depth_m = t;
+  hit->slope = slope;
+  hit->z_b_m = z0;
+  return true;
+}
+
+CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double u, double v_px, double depth_m,
+                           const std::vector<uint32_t>& neighbors, const std::vector<double>& noise_factor,
+                           const DepthCombineOptions& options) {
+  const SacView& view = views[v];
+  const double gsd = view.GsdAt(depth_m);
+  const double step_m = gsd;
+  auto factor = [&](uint32_t i) { return noise_factor.empty() ? 1.0 : noise_factor[i]; };
+  const double own_sigma = factor(v) * DepthNoiseScale(view, depth_m);
+  // The first gate: gate_gsd local GSDs, widened to 3 sigma of the own depth when the noise is larger.
+  const double gate_m = std::max(options.gate_gsd * gsd, noise_factor.empty() ? 0.0 : 3.0 * own_sigma);
+  // The ray of pixel (u, v): x(t) = world_from_cam * (ray_cam * t), ray_cam with unit z.
+  const Eigen::Vector3d ray_cam = view.depth_camera.Unproject(u, v_px, 1.0);
+  const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * depth_m);
+  const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (depth_m + step_m));
+
+  double weight_sum = 1.0 / (own_sigma * own_sigma);
+  double weighted_depth = weight_sum * depth_m;
+  CombinedDepth out;
+  for (const uint32_t nb : neighbors) {
+    RayHit hit;
+    if (!IntersectRay(views[nb], at_d, at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
+    const double sigma = factor(nb) * DepthNoiseScale(views[nb], hit.z_b_m) / std::abs(hit.slope);
+    const double w = 1.0 / (sigma * sigma);
+    weight_sum += w;
+    weighted_depth += w * hit.depth_m;
+    ++out.support;
+  }
+  out.depth_m = weighted_depth / weight_sum;
+  return out;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,147 @@
+#include "core/depth_combine.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "core/method_test_scene.h"
+#include "core/sac_test_scene.h"
+#include "core/view_noise.h"
+
+namespace sacfuse {
+namespace {
+
+using testing::kEast;
+using testing::kGroundZ;
+using testing::kNadirGsdM;
+using testing::kNadirHeightM;
+using testing::kNorth;
+using testing::kWholePixelShiftM;
+using testing::MethodBlock;
+using testing::NadirView;
+using testing::PlaneDepth;
+
+TEST(SampleDepthTest, BilinearBetweenValidCentresNearestOtherwise) {
+  DepthMap d(3, 3, 1, 10.0f);
+  d.at(0, 0) = 10.0f;
+  d.at(0, 1) = 12.0f;
+  d.at(1, 0) = 14.0f;
+  d.at(1, 1) = 16.0f;
+  double z = 0;
+  // (1.0, 1.0) is the middle of the four centres (0.5, 0.5) .. (1.5, 1.5): their mean.
+  ASSERT_TRUE(SampleDepth(d, 1.0, 1.0, 100.0, &z));
+  EXPECT_NEAR(z, 13.0, 1e-9);
+  // On a pixel centre: that pixel.
+  ASSERT_TRUE(SampleDepth(d, 1.5, 0.5, 100.0, &z));
+  EXPECT_NEAR(z, 12.0, 1e-9);
+  // The four differ by 6 m > 5 m allowed: the nearest pixel's depth (pixel (1, 1) holds (1.0, 1.0)).
+  ASSERT_TRUE(SampleDepth(d, 1.0, 1.0, 5.0, &z));
+  EXPECT_NEAR(z, 16.0, 1e-9);
+  // One of the four invalid: nearest.
+  d.at(0, 0) = 0.0f;
+  ASSERT_TRUE(SampleDepth(d, 1.2, 1.2, 100.0, &z));
+  EXPECT_NEAR(z, 16.0, 1e-9);
+  // Nearest invalid or outside: no depth.
+  EXPECT_FALSE(SampleDepth(d, 0.4, 0.4, 100.0, &z));
+  EXPECT_FALSE(SampleDepth(d, 3.2, 1.0, 100.0, &z));
+  EXPECT_FALSE(SampleDepth(d, -0.1, 1.0, 100.0, &z));
+}
+
+TEST(IntersectRayTest, FindsWhereAnotherDepthMapPutsATiltedSurfaceOnTheRay) {
+  // View b sees the plane z = ground + 0.3 (x - x0); its depth map is 0.5 m too long (surface 0.5 m too low).
+  // On a's ray, b's surface is where a would see the plane lowered by 0.5 m.
+  const double x0 = kEast;
+  const View a = NadirView(0, kEast, kNorth, kNadirHeightM);
+  const View b = NadirView(1, kEast + kWholePixelShiftM, kNorth, kNadirHeightM);
+  MethodBlock block;
+  block.Add(a, testing::TiltedPlaneDepth(a, kGroundZ, x0, 0.3));
+  DepthMap b_depth = testing::TiltedPlaneDepth(b, kGroundZ, x0, 0.3);
+  for (float& z : b_depth.data) z += 0.5f;
+  block.Add(b, b_depth);
+  const auto views = block.SacViews();
+  const DepthMap lowered = testing::TiltedPlaneDepth(a, kGroundZ - 0.5, x0, 0.3);
+  for (const auto& [row, col] : {std::pair{45, 80}, std::pair{20, 100}, std::pair{70, 60}}) {
+    const double d = block.depths[0].at(row, col);
+    const double gsd = views[0].GsdAt(d);
+    const Eigen::Vector3d ray = views[0].depth_camera.Unproject(col + 0.5, row + 0.5, 1.0);
+    RayHit hit;
+    ASSERT_TRUE(IntersectRay(views[1], views[0].world_from_cam * (ray * d), views[0].world_from_cam * (ray * (d + gsd)),
+                             d, gsd, 12 * gsd, 0.2, &hit))
+        << row << " " << col;
+    EXPECT_NEAR(hit.depth_m, lowered.at(row, col), 0.01) << row << " " << col;
+    // A gate narrower than the 0.5 m offset rejects it.
+    EXPECT_FALSE(IntersectRay(views[1], views[0].world_from_cam * (ray * d),
+                              views[0].world_from_cam * (ray * (d + gsd)), d, gsd, 0.2, 0.2, &hit));
+  }
+}
+
+// Four nadir views of a flat ground at the same height (so equal z gsd(z)), shifted by whole pixels.
+struct FourViews {
+  MethodBlock block;
+  std::vector<SacView> views;
+  explicit FourViews(const std::vector<double>& depth_offsets_m) {
+    for (size_t i = 0; i < depth_offsets_m.size(); ++i) {
+      const View v = NadirView(static_cast<uint32_t>(i), kEast + i * kWholePixelShiftM / 4, kNorth, kNadirHeightM);
+      block.Add(v, PlaneDepth(v, depth_offsets_m[i]));
+    }
+    views = block.SacViews();
+  }
+};
+
+TEST(CombineDepthTest, AveragesAgreeingViewsWeightedByNoiseAndGatesOutOthers) {
+  // View 0 exact; 1: +0.3 m; 2: -0.3 m; 3: a 5 m blunder (beyond 12 GSDs = 2 m).
+  FourViews s({0.0, 0.3, -0.3, 5.0});
+  const int row = 45, col = 60;
+  const double d = s.block.depths[0].at(row, col);
+  DepthCombineOptions options;
+  options.gate_gsd = 12.0;
+  ASSERT_LT(12.0 * kNadirGsdM, 5.0);
+  CombinedDepth c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {1, 2, 3}, {}, options);
+  EXPECT_EQ(c.support, 3);
+  EXPECT_NEAR(c.depth_m, d, 1e-4);  // (0 + 0.3 - 0.3) / 3
+  // Absolute noise factors: sigma 0.1 m for views 0, 1 and 3, view 2 three times noisier (weight 1/9):
+  // (0 + 0.3 - 0.3 / 9) / (2 + 1 / 9). The gate stays 12 GSDs (3 sigma is less), so the blunder stays out.
+  const double k = 0.1 / DepthNoiseScale(s.views[0], d);
+  c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {1, 2, 3}, {k, k, 3 * k, k}, options);
+  EXPECT_EQ(c.support, 3);
+  EXPECT_NEAR(c.depth_m - d, (0.3 - 0.3 / 9) / (2 + 1.0 / 9), 1e-4);
+  // Very noisy depth maps (sigma 2 m) widen the gate to 3 sigma = 6 m: the 5 m depth takes part.
+  c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {1, 2, 3}, {20 * k, 20 * k, 20 * k, 20 * k}, options);
+  EXPECT_EQ(c.support, 4);
+  EXPECT_NEAR(c.depth_m - d, 5.0 / 4, 1e-3);
+  // No neighbours: the depth as it was.
+  c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {}, {}, options);
+  EXPECT_EQ(c.support, 1);
+  EXPECT_NEAR(c.depth_m, d, 1e-9);
+}
+
+TEST(ViewNoiseTest, RecoversTheRatioOfDepthNoiseBetweenViews) {
+  // Views 0-1 have depth noise sigma 0.2 m, views 2-3 0.4 m (independent per pixel, fixed seed); all at the same
+  // height, so k must come out in the ratio 1 : 2.
+  FourViews s({0.0, 0.0, 0.0, 0.0});
+  std::mt19937 rng(7);
+  const double sigma[4] = {0.2, 0.2, 0.4, 0.4};
+  for (size_t i = 0; i < 4; ++i) {
+    std::normal_distribution<double> noise(0.0, sigma[i]);
+    for (float& z : s.block.depths[i].data) z += static_cast<float>(noise(rng));
+  }
+  const std::vector<std::vector<uint32_t>> others = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  ViewNoiseOptions options;
+  options.sample_step_px = 2;
+  const std::vector<double> k = EstimateViewNoiseFactors(s.views, others, options);
+  ASSERT_EQ(k.size(), 4u);
+  EXPECT_NEAR(k[1] / k[0], 1.0, 0.15);
+  EXPECT_NEAR(k[3] / k[2], 1.0, 0.15);
+  EXPECT_NEAR((k[2] + k[3]) / (k[0] + k[1]), 2.0, 0.3);
+  // Absolute: sigma = k z gsd(z) metres.
+  const double scale = DepthNoiseScale(s.views[0], kNadirHeightM);
+  EXPECT_NEAR(k[0] * scale, 0.2, 0.03);
+  EXPECT_NEAR(k[2] * scale, 0.4, 0.06);
+  // Without overlapping views there is nothing to estimate: all 1.
+  const std::vector<double> alone = EstimateViewNoiseFactors(s.views, {{}, {}, {}, {}}, options);
+  for (double x : alone) EXPECT_EQ(x, 1.0);
+}
+
+}  // namespace
+}  // namespace sacfuse

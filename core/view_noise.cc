@@ -1,0 +1,113 @@
+#include "core/view_noise.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+#include <tbb/parallel_for.h>
+
+#include "core/depth_combine.h"
+
+namespace sacfuse {
+namespace {
+
+constexpr double kMedianChiSquare1 = 0.4549;  // median of chi^2 with one degree of freedom
+constexpr double kMeanPull = 1e-3;            // weight of the pull of each k^2 towards the mean
+
+double Median(std::vector<double>* values) {
+  auto mid = values->begin() + values->size() / 2;
+  std::nth_element(values->begin(), mid, values->end());
+  return *mid;
+}
+
+struct PairRow {
+  uint32_t v = 0, b = 0;
+  double a = 0.0;   // weight of k_v^2
+  double m = 0.0;   // observed mix
+};
+
+// The rows of one view v: one per combine view with enough residuals.
+std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, const std::vector<uint32_t>& others,
+                                const ViewNoiseOptions& options) {
+  const SacView& view = views[v];
+  const DepthMap& depth = *view.depth;
+  std::vector<std::vector<double>> ratio(others.size()), share(others.size());
+  for (int row = options.sample_step_px / 2; row < depth.height; row += options.sample_step_px) {
+    for (int col = options.sample_step_px / 2; col < depth.width; col += options.sample_step_px) {
+      const float d = depth.at(row, col);
+      if (!IsValidDepth(d)) continue;
+      const double gsd = view.GsdAt(d);
+      const Eigen::Vector3d ray_cam = view.depth_camera.Unproject(col + 0.5, row + 0.5, 1.0);
+      const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * static_cast<double>(d));
+      const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (d + gsd));
+      const double s_v = DepthNoiseScale(view, d);
+      for (size_t i = 0; i < others.size(); ++i) {
+        RayHit hit;
+        if (!IntersectRay(views[others[i]], at_d, at_next, d, gsd, options.gate_gsd * gsd, options.min_slope, &hit)) {
+          continue;
+        }
+        const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);
+        const double total = s_v * s_v + s_b * s_b;
+        const double r = hit.depth_m - d;
+        ratio[i].push_back(r * r / total);
+        share[i].push_back(s_v * s_v / total);
+      }
+    }
+  }
+  std::vector<PairRow> rows;
+  for (size_t i = 0; i < others.size(); ++i) {
+    if (static_cast<int>(ratio[i].size()) < options.min_samples) continue;
+    PairRow r;
+    r.v = v;
+    r.b = others[i];
+    r.m = Median(&ratio[i]) / kMedianChiSquare1;
+    r.a = Median(&share[i]);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
+}  // namespace
+
+std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
+                                             const std::vector<std::vector<uint32_t>>& combine_views,
+                                             const ViewNoiseOptions& options) {
+  const size_t n = views.size();
+  std::vector<double> k(n, 1.0);
+  if (n < 2) return k;
+  std::vector<std::vector<PairRow>> per_view(n);
+  tbb::parallel_for(size_t{0}, n, [&](size_t v) {
+    per_view[v] = PairRowsOf(views, static_cast<uint32_t>(v), combine_views[v], options);
+  });
+  // Normal equations of: sum over rows (a x_v + (1 - a) x_b - m)^2 + kMeanPull sum_v (x_v - mean x)^2.
+  Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  size_t num_rows = 0;
+  for (const auto& rows : per_view) {
+    for (const PairRow& r : rows) {
+      const double c[2] = {r.a, 1.0 - r.a};
+      const uint32_t idx[2] = {r.v, r.b};
+      for (int i = 0; i < 2; ++i) {
+        for (int j = 0; j < 2; ++j) normal(idx[i], idx[j]) += c[i] * c[j];
+        rhs(idx[i]) += c[i] * r.m;
+      }
+      ++num_rows;
+    }
+  }
+  if (num_rows == 0) return k;
+  const Eigen::MatrixXd centering =
+      Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd::Constant(n, n, 1.0 / static_cast<double>(n));
+  normal += kMeanPull * centering.transpose() * centering;
+  // Views in no row: pinned to the mean of the others by the pull alone; a tiny ridge keeps the system regular.
+  normal += 1e-9 * Eigen::MatrixXd::Identity(n, n);
+  const Eigen::VectorXd x = normal.ldlt().solve(rhs);
+  std::vector<double> sorted;
+  for (size_t v = 0; v < n; ++v) sorted.push_back(std::sqrt(std::max(x(v), 1e-12)));
+  std::vector<double> copy = sorted;
+  const double median = Median(&copy);
+  if (!(median > 0) || !std::isfinite(median)) return k;
+  for (size_t v = 0; v < n; ++v) k[v] = std::clamp(sorted[v], 0.1 * median, 10.0 * median);
+  return k;
+}
+
+}  // namespace sacfuse

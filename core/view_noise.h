@@ -1,0 +1,34 @@
+#pragma once
+// Per-view depth noise factors k for SAC's averaging combine (core/depth_combine.h), estimated from the depth
+// maps themselves: the model is sigma_v(z) = k_v * z * gsd_v(z), where z * gsd(z) = z^2 / focal is the stereo
+// growth of depth error with distance and k_v holds what geometry cannot tell (baseline, matcher, obliques).
+//
+// Estimate: on a grid of sample pixels of each view v (every `sample_step_px`-th row and column), every combine
+// view b that puts the surface within the gate on v's ray (IntersectRay) gives a residual r = t_b - d with
+// E[r^2] = k_v^2 s_v^2 + k_b^2 s_b^2, s_v = z gsd_v(z), s_b = z_b gsd_b(z_b) / |f'|. Per ordered pair (v, b) with
+// at least `min_samples` residuals: m = median(r^2 / (s_v^2 + s_b^2)) / 0.4549 (the median of chi^2 with one
+// degree of freedom; the median keeps blunders that slip through the gate from inflating it) and
+// a = median(s_v^2 / (s_v^2 + s_b^2)), so that a k_v^2 + (1 - a) k_b^2 ~ m. The k_v^2 solve these rows in the
+// least-squares sense (plus a weak pull of 1e-3 towards their mean, so views without pairs stay defined); the
+// result is clamped to [0.1, 10] times the median k. k is absolute: sigma_v(z) = k_v z gsd_v(z) metres (the
+// residuals inside the gate understate very large noise).
+#include <cstdint>
+#include <vector>
+
+#include "core/sac_view.h"
+
+namespace sacfuse {
+
+struct ViewNoiseOptions {
+  int sample_step_px = 8;     // sample grid spacing, depth-map pixels
+  int min_samples = 50;       // residuals a view pair needs to count
+  double gate_gsd = 12.0;     // as fusion.combine_gate_gsd
+  double min_slope = 0.2;     // as DepthCombineOptions::min_slope
+};
+
+// k per view (1 for all when no pair has enough samples: then only equal weights are meant). Deterministic for any thread count.
+std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
+                                             const std::vector<std::vector<uint32_t>>& combine_views,
+                                             const ViewNoiseOptions& options);
+
+}  // namespace sacfuse
