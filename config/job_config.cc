@@ -84,8 +84,9 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddInt("superpixels.region_size_px", &sp.region_size_px, "SLIC region size, depth-map pixels");
   s.AddFloat("superpixels.ruler", &sp.ruler, "SLIC compactness");
   s.AddInt("superpixels.iterations", &sp.iterations, "SLIC iterations");
-  s.AddString("superpixels.algorithm", &sp.algorithm, "fast (our SLIC) | slic | slico | mslic (OpenCV)",
-              {"fast", "slic", "slico", "mslic"});
+  s.AddString("superpixels.algorithm", &sp.algorithm,
+              "fast (our SLIC) | slic | slico | mslic (OpenCV) | pixels (one node per pixel, ablation)",
+              {"fast", "slic", "slico", "mslic", "pixels"});
   s.AddInt("superpixels.block_size_px", &sp.block_size_px, "images are segmented in blocks of this size, px");
   s.AddFloat("superpixels.depth_weight", &sp.depth_weight, "weight of depth as an extra SLIC channel (0 = off)");
   ConsistencyOptions& cons = c->fusion.consistency;  // method consistency

@@ -242,6 +242,17 @@ cv::Mat SegmentBlock(const RgbImage& image, const DepthMap& depth, const cv::Rec
   return labels;
 }
 
+// Per-pixel nodes ("pixels", the paper's Section III.B without III.C): every pixel of block `r` its own cluster,
+// labels in row-major order; returns the number of clusters.
+int32_t SegmentBlockPixels(const cv::Rect& r, int raster_width, int32_t* out_labels) {
+  int32_t next = 0;
+  for (int row = r.y; row < r.y + r.height; ++row) {
+    int32_t* lab = out_labels + static_cast<size_t>(row) * raster_width;
+    for (int col = r.x; col < r.x + r.width; ++col) lab[col] = next++;
+  }
+  return next;
+}
+
 // Our own SLIC ("fast") on block `r`: writes block-local dense labels (first-appearance order) straight into
 // `out_labels` (the global row-major raster) and returns the number of clusters.
 int32_t SegmentBlockFast(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
@@ -368,7 +379,9 @@ std::vector<SuperpixelCluster> BlockClusterStats(const DepthMap& depth, const cv
     c.valid_count = sums[i].valid;
     c.centroid_col = static_cast<float>(sums[i].col / sums[i].pixels);
     c.centroid_row = static_cast<float>(sums[i].row / sums[i].pixels);
-    if (c.valid_count > 0 && c.valid_count >= static_cast<uint32_t>(options.min_valid_pixels)) {
+    // A one-pixel cluster ("pixels") has its pixel's depth whatever min_valid_pixels says.
+    const uint32_t min_valid = options.algorithm == "pixels" ? 1u : static_cast<uint32_t>(options.min_valid_pixels);
+    if (c.valid_count > 0 && c.valid_count >= min_valid) {
       c.depth_m = MedianOfValidDepths(values.data() + offset[i], c.valid_count, &scratch->keys);
     }
   }
@@ -381,7 +394,8 @@ std::vector<SuperpixelCluster> BlockClusterStats(const DepthMap& depth, const cv
 std::vector<SuperpixelCluster> ProcessBlock(const RgbImage& image, const DepthMap& depth, const cv::Rect& r,
                                             const SuperpixelOptions& options, int32_t* out_labels,
                                             BlockScratch* scratch) {
-  const int32_t count = options.algorithm == "fast"
+  const int32_t count = options.algorithm == "pixels" ? SegmentBlockPixels(r, depth.width, out_labels)
+                        : options.algorithm == "fast"
                             ? SegmentBlockFast(image, depth, r, options, out_labels, scratch)
                             : SegmentBlockOpenCv(image, depth, r, options, out_labels);
   return BlockClusterStats(depth, r, out_labels, count, options, scratch);
@@ -437,8 +451,9 @@ void ValidateSuperpixelOptions(const SuperpixelOptions& o) {
   if (o.iterations < 1 || o.iterations > 100) {
     errors.push_back(Rule("iterations", o.iterations, "must be in [1, 100]"));
   }
-  if (o.algorithm != "slic" && o.algorithm != "slico" && o.algorithm != "mslic" && o.algorithm != "fast") {
-    errors.push_back(Rule("algorithm", o.algorithm, "must be one of slic, slico, mslic, fast"));
+  if (o.algorithm != "slic" && o.algorithm != "slico" && o.algorithm != "mslic" && o.algorithm != "fast" &&
+      o.algorithm != "pixels") {
+    errors.push_back(Rule("algorithm", o.algorithm, "must be one of slic, slico, mslic, fast, pixels"));
   }
   if (o.block_size_px < 2 * std::max(o.region_size_px, 1)) {
     errors.push_back(Rule("block_size_px", o.block_size_px,

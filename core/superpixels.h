@@ -27,6 +27,8 @@ struct SuperpixelOptions {
   // seeds on a region_size_px grid moved to the lowest gradient in 3x3, run-based connectivity; deterministic).
   // Default fast: ~8x slico's speed (24-47 Mpx/s on 2 threads vs 3-5) at -0.08 / -0.02 F1 on the small block
   // (README "Superpixels at block scale").
+  // pixels: no clustering, every pixel its own node (the paper's per-point Netlets, Section III.B; the ablation
+  // of III.C — memory and time grow with the pixel count, for small blocks only).
   std::string algorithm = "fast";
   // The raster is segmented in independent square blocks of this size (bounded memory, parallelism).
   // >= 2 * region_size_px.

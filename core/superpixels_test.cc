@@ -276,6 +276,30 @@ TEST(SuperpixelsTest, OddSizesAndTinyImagesGetSaneLabels) {
   }
 }
 
+TEST(SuperpixelsTest, PixelsAlgorithmMakesOneClusterPerPixelWithItsDepth) {
+  SuperpixelOptions options;
+  options.algorithm = "pixels";
+  options.block_size_px = 64;  // 100 x 37 -> blocks of 64 and 36 columns (the narrow one is merged: 100 wide)
+  RgbImage image;
+  DepthMap depth;
+  MakeTextured(100, 37, 3, &image, &depth);
+  depth.at(5, 7) = 0.0f;  // invalid
+  const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
+  ASSERT_EQ(map.clusters.size(), 100u * 37u);
+  std::set<int32_t> labels(map.labels.begin(), map.labels.end());
+  EXPECT_EQ(labels.size(), map.clusters.size());
+  for (int row = 0; row < 37; ++row) {
+    for (int col = 0; col < 100; ++col) {
+      const SuperpixelCluster& c = map.clusters[map.label(row, col)];
+      EXPECT_EQ(c.pixel_count, 1u);
+      EXPECT_FLOAT_EQ(c.centroid_col, col + 0.5f);
+      EXPECT_FLOAT_EQ(c.centroid_row, row + 0.5f);
+      EXPECT_EQ(c.depth_m, depth.at(row, col));  // 0 for the invalid pixel
+    }
+  }
+  ExpectClusterStatsConsistent(map, depth, 1);
+}
+
 TEST(SuperpixelsTest, LargerImageIsResampledToTheDepthGrid) {
   RgbImage image;
   DepthMap depth;
