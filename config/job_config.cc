@@ -75,6 +75,8 @@ ConfigSchema MakeSchema(JobConfig* c) {
               "emitted depth: average (selected pixel, depth averaged over agreeing views) | select (as selected)",
               {"average", "select"});
   s.AddDouble("fusion.combine_gate_gsd", &f.combine_gate_gsd, "average: agreement gate along the ray, local GSDs");
+  s.AddDouble("fusion.combine_gate_sigmas", &f.combine_gate_sigmas,
+              "average: ... or this many sigmas of the own depth's estimated noise");
   s.AddInt("fusion.combine_max_views", &f.combine_max_views, "average: views consulted per view");
   s.AddDouble("fusion.combine_max_view_angle_deg", &f.combine_max_view_angle_deg,
               "average: max angle between those views' directions, deg");

@@ -29,6 +29,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   const bool combine = options.combine == "average";
   DepthCombineOptions combine_options;
   combine_options.gate_gsd = options.combine_gate_gsd;
+  combine_options.gate_sigmas = options.combine_gate_sigmas;
   std::vector<std::vector<FusedPoint>> block_points(kBlocksPerBatch);
   std::vector<CollapseStats> block_stats(kBlocksPerBatch);
 

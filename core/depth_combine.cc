@@ -72,8 +72,8 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   const double step_m = gsd;
   auto factor = [&](uint32_t i) { return noise_factor.empty() ? 1.0 : noise_factor[i]; };
   const double own_sigma = factor(v) * DepthNoiseScale(view, depth_m);
-  // The first gate: gate_gsd local GSDs, widened to 3 sigma of the own depth when the noise is larger.
-  const double gate_m = std::max(options.gate_gsd * gsd, noise_factor.empty() ? 0.0 : 3.0 * own_sigma);
+  // The gate: gate_gsd local GSDs, widened to gate_sigmas sigma of the own depth when the noise is larger.
+  const double gate_m = std::max(options.gate_gsd * gsd, noise_factor.empty() ? 0.0 : options.gate_sigmas * own_sigma);
   // The ray of pixel (u, v): x(t) = world_from_cam * (ray_cam * t), ray_cam with unit z.
   const Eigen::Vector3d ray_cam = view.depth_camera.Unproject(u, v_px, 1.0);
   const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * depth_m);

@@ -26,6 +26,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.InRange("fusion.min_consistent_views", o.min_consistent_views, 1, 64);
   c.OneOf("fusion.combine", o.combine, {"select", "average"});
   c.Greater("fusion.combine_gate_gsd", o.combine_gate_gsd, 0.0);
+  c.AtLeast("fusion.combine_gate_sigmas", o.combine_gate_sigmas, 0.0);
   c.InRange("fusion.combine_max_views", o.combine_max_views, 1, 64);
   c.InRange("fusion.combine_max_view_angle_deg", o.combine_max_view_angle_deg, 0.0, 180.0);
   c.Absorb([&] { ValidateSuperpixelOptions(o.superpixels); });

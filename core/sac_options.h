@@ -48,8 +48,9 @@ struct SacOptions {
   //   average: it keeps the selected view's pixel (same point count) with its depth along that ray averaged
   //            over the agreeing depth maps (core/depth_combine.h).
   std::string combine = "average";
-  double combine_gate_gsd = 12.0;       // average: depth maps within this many local GSDs along the ray take part
-  int combine_max_views = 24;           // average: views consulted per view (chosen like the neighbour views)
+  double combine_gate_gsd = 12.0;       // average: depth maps within this many local GSDs along the ray take part,
+  double combine_gate_sigmas = 3.0;     // or within this many sigmas of the estimated noise of the own depth
+  int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
   // --- Superpixels (nodes).
   SuperpixelOptions superpixels;
