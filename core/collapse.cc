@@ -1,6 +1,7 @@
 #include "core/collapse.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include <tbb/parallel_for.h>
 
@@ -14,6 +15,20 @@ constexpr int kRowsPerBlock = 16;
 constexpr int kBlocksPerBatch = 64;
 constexpr int kMaxCoverageHops = 4;  // chains of choices longer than this are treated as not covering
 
+
+// Whether `target` emits the surface at a pixel of `view` (depth d): its depth agrees within the tolerance, or,
+// with estimated noise factors, within coverage_tolerance_sigmas sigma of the difference of the two depth maps.
+bool CoverageAgrees(const SacView& view, double d, uint32_t v, const SacView& tv, uint32_t target,
+                    const DepthLookup& hit, const std::vector<double>& noise_factor, const SacOptions& options) {
+  if (DepthAgrees(tv, hit, options)) return true;
+  if (noise_factor.empty() || options.coverage_tolerance_sigmas <= 0 || !hit.inside ||
+      !IsValidDepth(hit.stored_depth_m)) {
+    return false;
+  }
+  const double sigma_own = noise_factor[v] * DepthNoiseScale(view, d);
+  const double sigma_target = noise_factor[target] * DepthNoiseScale(tv, hit.z_m);
+  return std::abs(hit.stored_depth_m - hit.z_m) <= options.coverage_tolerance_sigmas * std::hypot(sigma_own, sigma_target);
+}
 
 }  // namespace
 
@@ -57,7 +72,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           for (int hop = 0; hop < kMaxCoverageHops && target != v; ++hop) {
             const SacView& tv = views[target];
             const DepthLookup hit = LookupDepth(tv, point);
-            if (!DepthAgrees(tv, hit, options)) break;
+            if (!CoverageAgrees(view, d, v, tv, target, hit, noise_factor, options)) break;
             const uint32_t next =
                 chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
             if (next == target) {

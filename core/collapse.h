@@ -3,7 +3,8 @@
 // onto the points of the selected view.
 //
 // Coverage rule (the paper is silent): a pixel of view a whose cluster chose view L != a is dropped only when a
-// view actually emits that surface: the pixel's point projects into L onto a valid depth that agrees with it, and
+// view actually emits that surface: the pixel's point projects into L onto a valid depth that agrees with it (within
+// the tolerance, or — with estimated noise — within coverage_tolerance_sigmas sigma of the two depths' difference), and
 // the cluster there chose L itself — or chose L2, and the same holds in L2 (up to 4 hops, never back to a).
 // Otherwise the pixel is emitted from its own view. So no surface patch observed consistently is lost.
 // Outliers: an emitted point must agree with min(min_consistent_views, max(2, 1 + observers)) depth maps (its own

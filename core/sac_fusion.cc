@@ -42,6 +42,14 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   const auto combine_views = options.combine == "average" ? SelectNeighborViews(views, nodes, combine_selection)
                                                           : std::vector<std::vector<uint32_t>>(views.size());
   timer.Mark("nodes");
+  std::vector<double> noise_factor;
+  if (options.combine == "average") {
+    ViewNoiseOptions noise_options;
+    noise_options.gate_gsd = options.combine_gate_gsd;
+    noise_factor = EstimateViewNoiseFactors(views, combine_views, noise_options);
+    stats.noise_factor = noise_factor;
+    timer.Mark("noise");
+  }
   const Correspondences correspondences = FindCorrespondences(views, nodes, neighbors, options);
   stats.mean_correspondences =
       stats.valid_nodes > 0 ? static_cast<double>(correspondences.node_ids.size()) / stats.valid_nodes : 0.0;
@@ -52,14 +60,6 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   timer.Mark("netlets");
   const std::vector<uint32_t> chosen = LabelNetlets(views, nodes, netlets, options, &stats.labeling);
   timer.Mark("labelling");
-  std::vector<double> noise_factor;
-  if (options.combine == "average") {
-    ViewNoiseOptions noise_options;
-    noise_options.gate_gsd = options.combine_gate_gsd;
-    noise_factor = EstimateViewNoiseFactors(views, combine_views, noise_options);
-    stats.noise_factor = noise_factor;
-    timer.Mark("noise");
-  }
   stats.emitted_per_view.assign(views.size(), 0);
   for (uint32_t v = 0; v < views.size(); ++v) {
     const CollapseStats s = EmitView(v, views, nodes, chosen, neighbors, combine_views, noise_factor, options, owner, sink);

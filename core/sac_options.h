@@ -42,6 +42,9 @@ struct SacOptions {
   double smoothness_weight = 0.0;       // bonus for the label of adjacent clusters of the same view (0 = off)
   int smoothness_rounds = 2;            // Jacobi rounds of that cross-Netlet smoothness
   // --- Collapse and outliers.
+  // Coverage (collapse, step 6): with estimated noise (combine: average), the chosen view "emits the surface" also
+  // when the depths differ by less than this many sigmas of their difference (0 = the tolerance above only).
+  double coverage_tolerance_sigmas = 5.0;
   int min_consistent_views = 3;         // a point must agree with this many views (its own included), fewer
                                         // where fewer can observe it (see collapse.h)
   //   select:  an emitted pixel keeps its selected view's depth (the paper's collapse, no averaging).
