@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
+#include "core/depth_combine.h"
 #include "core/sac_tolerance.h"
 
 namespace sacfuse {
@@ -16,11 +17,22 @@ constexpr uint32_t kNone = UINT32_MAX;
 
 // Node of view `b` whose superpixel holds the projection of `point`; kNone when outside, invalid, or (with
 // `depth_test`) when view b's depth there disagrees with the point's depth (occluded, or the point floats).
+// `sigma_a_m`: the node's depth noise in its own view, metres (with noise factors; else unused).
 uint32_t NodeAtProjection(const SacView& view_b, uint32_t b, const Eigen::Vector3d& point, const NodeTable& nodes,
-                          const SacOptions& options, bool depth_test) {
+                          const SacOptions& options, bool depth_test, const std::vector<double>& noise_factor = {},
+                          double sigma_a_m = 0.0) {
   const DepthLookup lookup = LookupDepth(view_b, point);
   if (!lookup.inside) return kNone;
-  if (depth_test && !DepthAgrees(view_b, lookup, options)) return kNone;
+  if (depth_test && !DepthAgrees(view_b, lookup, options)) {
+    if (noise_factor.empty() || options.correspondence_tolerance_sigmas <= 0 || !IsValidDepth(lookup.stored_depth_m)) {
+      return kNone;
+    }
+    const double sigma_b = noise_factor[b] * DepthNoiseScale(view_b, lookup.z_m);
+    if (std::abs(lookup.stored_depth_m - lookup.z_m) > options.correspondence_tolerance_sigmas *
+                                                          std::hypot(sigma_a_m, sigma_b)) {
+      return kNone;
+    }
+  }
   const uint32_t id = nodes.Id(b, static_cast<uint32_t>(view_b.superpixels->label(lookup.row, lookup.col)));
   return nodes.nodes[id].valid ? id : kNone;
 }
@@ -46,7 +58,7 @@ Correspondences Collect(size_t num_nodes, size_t stride, const PerNode& per_node
 
 Correspondences ByReprojection(const std::vector<SacView>& views, const NodeTable& nodes,
                                const std::vector<std::vector<uint32_t>>& neighbors, const SacOptions& options,
-                               bool dense) {
+                               bool dense, const std::vector<double>& noise_factor) {
   size_t stride = 1;
   for (const auto& n : neighbors) stride = std::max(stride, n.size());
   if (dense) stride = std::max(stride, static_cast<size_t>(options.max_neighbor_views));
@@ -54,9 +66,12 @@ Correspondences ByReprojection(const std::vector<SacView>& views, const NodeTabl
     const SacNode& node = nodes.nodes[i];
     if (!node.valid) return;
     if (!dense) {
+      const double sigma_a =
+          noise_factor.empty() ? 0.0 : noise_factor[node.view] * DepthNoiseScale(views[node.view], node.depth_m);
       for (size_t k = 0; k < neighbors[node.view].size(); ++k) {
         const uint32_t b = neighbors[node.view][k];
-        out[k] = NodeAtProjection(views[b], b, node.point_in_world, nodes, options, /*depth_test=*/true);
+        out[k] = NodeAtProjection(views[b], b, node.point_in_world, nodes, options, /*depth_test=*/true, noise_factor,
+                                  sigma_a);
       }
       return;
     }
@@ -130,7 +145,8 @@ Correspondences ByProximity(const std::vector<SacView>& views, const NodeTable& 
 }  // namespace
 
 Correspondences FindCorrespondences(const std::vector<SacView>& views, const NodeTable& nodes,
-                                    const std::vector<std::vector<uint32_t>>& neighbors, const SacOptions& options) {
+                                    const std::vector<std::vector<uint32_t>>& neighbors, const SacOptions& options,
+                                    const std::vector<double>& noise_factor) {
   if (options.correspondence == "proximity") return ByProximity(views, nodes, neighbors, options);
   const bool dense = options.correspondence == "dense";
   if (dense) {
@@ -142,7 +158,7 @@ Correspondences FindCorrespondences(const std::vector<SacView>& views, const Nod
       }
     }
   }
-  return ByReprojection(views, nodes, neighbors, options, dense);
+  return ByReprojection(views, nodes, neighbors, options, dense, noise_factor);
 }
 
 }  // namespace sacfuse

@@ -20,7 +20,10 @@ struct Correspondences {
 };
 
 // Deterministic for any thread count. Throws Error for the dense strategy when a view has no consistency graph.
+// With `noise_factor` (core/view_noise.h, one per view; empty = none) the reprojection strategy's depth test also
+// accepts depths within correspondence_tolerance_sigmas sigma of the two views' depth difference.
 Correspondences FindCorrespondences(const std::vector<SacView>& views, const NodeTable& nodes,
-                                    const std::vector<std::vector<uint32_t>>& neighbors, const SacOptions& options);
+                                    const std::vector<std::vector<uint32_t>>& neighbors, const SacOptions& options,
+                                    const std::vector<double>& noise_factor = {});
 
 }  // namespace sacfuse

@@ -50,7 +50,7 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
     stats.noise_factor = noise_factor;
     timer.Mark("noise");
   }
-  const Correspondences correspondences = FindCorrespondences(views, nodes, neighbors, options);
+  const Correspondences correspondences = FindCorrespondences(views, nodes, neighbors, options, noise_factor);
   stats.mean_correspondences =
       stats.valid_nodes > 0 ? static_cast<double>(correspondences.node_ids.size()) / stats.valid_nodes : 0.0;
   timer.Mark("correspondences");

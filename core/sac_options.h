@@ -22,6 +22,9 @@ struct SacOptions {
   // GSD (depth / focal), plus a fraction of the depth (COLMAP's 1 % would be 0.01).
   double depth_tolerance_gsd = 3.0;
   double depth_tolerance_rel = 0.0;
+  // Reprojection correspondences: with estimated noise (combine: average), depths also agree within this many
+  // sigmas of the two views' depth difference (0 = the tolerance above only).
+  double correspondence_tolerance_sigmas = 1.0;
   double proximity_radius_m = 0.0;      // proximity strategy search radius, metres; 0 = 1.5 x superpixel size
   // --- Netlets (Algorithm 1): nodes are superpixel centroids; edges join nodes closer than tau.
   double tau_m = 2.0;                   // edge threshold, metres (paper: 2 m); weight = exp(-distance)
