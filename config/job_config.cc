@@ -71,6 +71,8 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddInt("fusion.smoothness_rounds", &f.smoothness_rounds, "rounds of that smoothness");
   s.AddInt("fusion.min_consistent_views", &f.min_consistent_views,
            "outliers: min views (own included) agreeing with a point");
+  s.AddDouble("fusion.outlier_expected_factor", &f.outlier_expected_factor,
+              "outliers: with estimated noise, ask at most 1 + this x the expected agreeing views (0 = off)");
   s.AddDouble("fusion.correspondence_tolerance_sigmas", &f.correspondence_tolerance_sigmas,
               "reprojection correspondences: also agree within this many sigmas of estimated noise (0 = off)");
   s.AddDouble("fusion.coverage_tolerance_sigmas", &f.coverage_tolerance_sigmas,

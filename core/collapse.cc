@@ -91,18 +91,35 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           // Views that can observe the point: they agree, or they see through it (free space). Views where it is
           // occluded (their surface lies in front) cannot judge it and are not counted.
           int agree = 1, observers = 0;
+          // With estimated noise: how many observers should agree, sum of P(|difference| <= tolerance).
+          double expected_agree = 0.0;
+          const bool noise_aware = !noise_factor.empty() && options.outlier_expected_factor > 0;
+          const double sigma_own = noise_aware ? noise_factor[v] * DepthNoiseScale(view, d) : 0.0;
           for (const uint32_t b : neighbors[v]) {
             const DepthLookup hit = LookupDepth(views[b], point);
             if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
             const double tolerance = DepthToleranceM(views[b], hit.z_m, options);
+            bool observes = false;
             if (std::abs(hit.stored_depth_m - hit.z_m) <= tolerance) {
               ++agree;
-              ++observers;
+              observes = true;
             } else if (hit.stored_depth_m > hit.z_m + tolerance) {
-              ++observers;
+              observes = true;
+            }
+            if (!observes) continue;
+            ++observers;
+            if (noise_aware) {
+              const double sigma_b = noise_factor[b] * DepthNoiseScale(views[b], hit.z_m);
+              expected_agree += std::erf(tolerance / (std::hypot(sigma_own, sigma_b) * std::sqrt(2.0)));
             }
           }
-          const int required = std::min(options.min_consistent_views, std::max(2, 1 + observers));
+          int required = std::min(options.min_consistent_views, std::max(2, 1 + observers));
+          if (noise_aware) {
+            // Noisy depth maps rarely agree within the strict tolerance: ask no more than the noise lets agree.
+            required = std::min(required,
+                                std::max(2, 1 + static_cast<int>(std::lround(options.outlier_expected_factor *
+                                                                             expected_agree))));
+          }
           if (agree < required) {
             ++stats.outliers;
             continue;

@@ -10,7 +10,10 @@
 // Outliers: an emitted point must agree with min(min_consistent_views, max(2, 1 + observers)) depth maps (its own
 // included) among its view's neighbours, where observers are the neighbours that agree or see through the point
 // (free space); neighbours in which it is occluded cannot judge it. So blunders, floaters and points seen by one
-// view only are removed, while surfaces that only two views can see are kept when those two agree.
+// view only are removed, while surfaces that only two views can see are kept when those two agree. With estimated
+// noise (combine: average) the requirement is also capped at max(2, 1 + round(outlier_expected_factor x E)), E the
+// expected number of agreeing observers, sum of erf(tolerance / (sqrt(2) sigma of the two depths' difference)):
+// low-noise blocks keep the strict count, noisy ones are not asked for agreement the noise does not allow.
 #include <cstdint>
 #include <functional>
 #include <vector>

@@ -25,6 +25,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.InRange("fusion.smoothness_rounds", o.smoothness_rounds, 0, 20);
   c.InRange("fusion.min_consistent_views", o.min_consistent_views, 1, 64);
   c.AtLeast("fusion.correspondence_tolerance_sigmas", o.correspondence_tolerance_sigmas, 0.0);
+  c.AtLeast("fusion.outlier_expected_factor", o.outlier_expected_factor, 0.0);
   c.AtLeast("fusion.coverage_tolerance_sigmas", o.coverage_tolerance_sigmas, 0.0);
   c.OneOf("fusion.combine", o.combine, {"select", "average"});
   c.Greater("fusion.combine_gate_gsd", o.combine_gate_gsd, 0.0);

@@ -48,8 +48,10 @@ struct SacOptions {
   // Coverage (collapse, step 6): with estimated noise (combine: average), the chosen view "emits the surface" also
   // when the depths differ by less than this many sigmas of their difference (0 = the tolerance above only).
   double coverage_tolerance_sigmas = 5.0;
-  int min_consistent_views = 3;         // a point must agree with this many views (its own included), fewer
+  int min_consistent_views = 4;         // a point must agree with this many views (its own included), fewer
                                         // where fewer can observe it (see collapse.h)
+  double outlier_expected_factor = 1.5; // with estimated noise: at most 1 + this x the expected agreeing views
+                                        // (0 = off)
   //   select:  an emitted pixel keeps its selected view's depth (the paper's collapse, no averaging).
   //   average: it keeps the selected view's pixel (same point count) with its depth along that ray averaged
   //            over the agreeing depth maps (core/depth_combine.h).
