@@ -7,7 +7,6 @@
 #include <CLI/CLI.hpp>
 #include <spdlog/spdlog.h>
 
-#include "config/job_config.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "tools/cli/cli_support.h"
@@ -24,6 +23,7 @@ struct SimulateArgs {
   uint64_t seed = 1;
   std::string from_las;
   bool no_errors = false;
+  bool no_pose_errors = false;  // pose_position_sigma_m = pose_rotation_sigma_deg = 0, other errors as they are
   double error_scale = 1.0;
   bool no_obliques = false;
   bool write_truth = false;
@@ -33,17 +33,20 @@ struct SimulateArgs {
   double pixel_scale = 1.0;
 };
 
-// A ready-to-run config next to the block: `sacfuse run DIR/sacfuse.yaml` fuses and scores it.
+// A ready-to-run config next to the block: `sacfuse run DIR/sacfuse.yaml` fuses and scores it. Only the keys the
+// block decides are written; every other key takes the defaults of the sacfuse that runs it (a full dump would
+// freeze this binary's defaults into the block and hide later changes from reruns and `sacfuse bench`).
 void WriteBlockConfig(const std::string& out_dir, const SimOptions& sim) {
-  JobConfig config;
-  config.input.path = ".";
-  config.output.dir = "out";
-  config.evaluation.reference = "reference.las";
-  config.evaluation.mask = "eval_mask.png";
-  config.evaluation.gsd_m = sim.gsd_m;
+  std::ostringstream gsd;
+  gsd.precision(15);
+  gsd << sim.gsd_m;
   WriteFileAtomically((std::filesystem::path(out_dir) / "sacfuse.yaml").string(),
-                      "# Written by `sacfuse simulate`; paths are relative to this file.\n" +
-                          DumpJobConfig(config, /*with_comments=*/false));
+                      "# Written by `sacfuse simulate`; paths are relative to this file. Keys not given take their\n"
+                      "# defaults (`sacfuse run --print-defaults`).\n"
+                      "input: {path: \".\"}\n"
+                      "output: {dir: \"out\"}\n"
+                      "evaluation: {reference: \"reference.las\", mask: \"eval_mask.png\", gsd_m: " +
+                          gsd.str() + "}\n");
 }
 
 int Simulate(const SimulateArgs& args) {
@@ -58,6 +61,7 @@ int Simulate(const SimulateArgs& args) {
     if (args.area_m > 0) options.area_width_m = options.area_height_m = args.area_m;
     options.errors.enabled = !args.no_errors;
     options.errors.scale = args.error_scale;
+    if (args.no_pose_errors) options.errors.pose_position_sigma_m = options.errors.pose_rotation_sigma_deg = 0.0;
     options.obliques = !args.no_obliques;
     options.write_truth = args.write_truth;
     if (args.consistency_graphs) options.write_consistency_graphs = *args.consistency_graphs;
@@ -100,6 +104,8 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--from-las", args->from_las, "Use an airborne LiDAR LAS file as the scene surface");
   cmd->add_option("--area", args->area_m, "Square scene side, metres (overrides the preset; crops --from-las)");
   cmd->add_flag("--no-errors", args->no_errors, "Perfect depth maps and true poses (the ceiling)");
+  cmd->add_flag("--no-pose-errors", args->no_pose_errors,
+                "True poses (pose_position_sigma_m = pose_rotation_sigma_deg = 0); every other error as it is");
   cmd->add_option("--error-scale", args->error_scale, "Multiply every error magnitude (2-3 = harsher)")
       ->capture_default_str();
   cmd->add_flag("--no-obliques", args->no_obliques, "Nadir camera only");
