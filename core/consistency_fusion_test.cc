@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/method_test_scene.h"
 #include "core/sac_test_scene.h"
+#include "tests/support/error_of.h"
 
 namespace sacfuse {
 namespace {
@@ -110,12 +111,8 @@ TEST(ConsistencyFusionTest, OccludedDepthsAreRemovedAndOnlyRelativeAgreementCoun
 TEST(ConsistencyFusionTest, OptionsAreValidatedWithTheirKeys) {
   ConsistencyOptions o;
   o.depth_threshold_rel = 0.0;
-  try {
-    ValidateConsistencyOptions(o);
-    FAIL() << "no error";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("consistency.depth_threshold_rel = 0"), std::string::npos) << e.what();
-  }
+  const std::string what = testing::OptionErrorOf([&] { ValidateConsistencyOptions(o); });
+  EXPECT_NE(what.find("consistency.depth_threshold_rel = 0"), std::string::npos) << what;
   Block block;
   const View v = NadirView(0, kEast, kNorth, kHeight);
   block.Add(v, PlaneDepth(v));

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/method_test_scene.h"
 #include "core/sac_test_scene.h"
+#include "tests/support/error_of.h"
 
 namespace sacfuse {
 namespace {
@@ -104,15 +105,10 @@ TEST(DisparityNormalFusionTest, OptionsAreValidatedWithTheirKeys) {
   o.normal_threshold_deg = 200;
   o.min_consistent_views = 0;
   o.normal_radius_px = 0;
-  try {
-    ValidateDisparityNormalOptions(o);
-    FAIL() << "no error";
-  } catch (const ConfigError& e) {
-    const std::string what = e.what();
-    for (const char* key : {"disparity_normal.disparity_threshold_px = -1", "disparity_normal.normal_threshold_deg = 200",
-                            "disparity_normal.min_consistent_views = 0", "disparity_normal.normal_radius_px = 0"}) {
-      EXPECT_NE(what.find(key), std::string::npos) << what;
-    }
+  const std::string what = testing::OptionErrorOf([&] { ValidateDisparityNormalOptions(o); });
+  for (const char* key : {"disparity_normal.disparity_threshold_px = -1", "disparity_normal.normal_threshold_deg = 200",
+                          "disparity_normal.min_consistent_views = 0", "disparity_normal.normal_radius_px = 0"}) {
+    EXPECT_NE(what.find(key), std::string::npos) << what;
   }
 }
 

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/method_test_scene.h"
 #include "core/sac_test_scene.h"
+#include "tests/support/error_of.h"
 
 namespace sacfuse {
 namespace {
@@ -87,13 +88,9 @@ TEST(MultirayFusionTest, OptionsAreValidatedWithTheirKeys) {
   MultirayOptions o;
   o.min_rays = 1;
   o.depth_sigma_gsd = -1;
-  try {
-    ValidateMultirayOptions(o);
-    FAIL() << "no error";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("multiray.min_rays = 1"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("multiray.depth_sigma_gsd = -1"), std::string::npos) << e.what();
-  }
+  const std::string what = testing::OptionErrorOf([&] { ValidateMultirayOptions(o); });
+  EXPECT_NE(what.find("multiray.min_rays = 1"), std::string::npos) << what;
+  EXPECT_NE(what.find("multiray.depth_sigma_gsd = -1"), std::string::npos) << what;
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/method_test_scene.h"
 #include "core/sac_test_scene.h"
+#include "tests/support/error_of.h"
 
 namespace sacfuse {
 namespace {
@@ -95,22 +96,14 @@ TEST(TsdfFusionTest, VoxelMemoryIsBoundedAndOptionsAreValidated) {
   TsdfOptions tiny;
   tiny.max_memory_gb = 1e-4;  // ~100 kB: a few blocks
   CollectingSink sink;
-  try {
-    RunTsdfFusion(block.SacViews(), tiny, sink, kGsd);
-    FAIL() << "no error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("tsdf.max_memory_gb"), std::string::npos) << e.what();
-  }
+  const std::string memory = testing::ErrorOf<Error>([&] { RunTsdfFusion(block.SacViews(), tiny, sink, kGsd); });
+  EXPECT_NE(memory.find("tsdf.max_memory_gb"), std::string::npos) << memory;
   TsdfOptions bad;
   bad.truncation_gsd = 0.5;  // not more than the voxel
   bad.min_weight = 0;
-  try {
-    ValidateTsdfOptions(bad);
-    FAIL() << "no error";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("tsdf.truncation_gsd = 0.5"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("tsdf.min_weight = 0"), std::string::npos) << e.what();
-  }
+  const std::string what = testing::OptionErrorOf([&] { ValidateTsdfOptions(bad); });
+  EXPECT_NE(what.find("tsdf.truncation_gsd = 0.5"), std::string::npos) << what;
+  EXPECT_NE(what.find("tsdf.min_weight = 0"), std::string::npos) << what;
 }
 
 }  // namespace

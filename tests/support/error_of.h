@@ -1,5 +1,5 @@
 #pragma once
-// Test helper: the message of the InputError a callable throws.
+// Test helpers: the message of the exception of a given type a callable throws.
 #include <exception>
 #include <string>
 
@@ -9,19 +9,30 @@
 
 namespace sacfuse::testing {
 
-// The message of the InputError `fn` throws ("" and a test failure when it throws nothing or another type).
-template <typename Fn>
-std::string InputErrorOf(Fn fn) {
+// The message of the `ErrorType` `fn` throws ("" and a test failure when it throws nothing or another type).
+template <typename ErrorType, typename Fn>
+std::string ErrorOf(Fn fn) {
   try {
     fn();
-  } catch (const InputError& e) {
+  } catch (const ErrorType& e) {
     return e.what();
   } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an InputError: " << e.what();
+    ADD_FAILURE() << "not the expected error type: " << e.what();
     return "";
   }
   ADD_FAILURE() << "no exception";
   return "";
+}
+
+template <typename Fn>
+std::string InputErrorOf(Fn fn) {
+  return ErrorOf<InputError>(fn);
+}
+
+// For option validators: the ConfigError's message.
+template <typename Fn>
+std::string OptionErrorOf(Fn fn) {
+  return ErrorOf<ConfigError>(fn);
 }
 
 }  // namespace sacfuse::testing
