@@ -16,18 +16,17 @@ constexpr int kBlocksPerBatch = 64;
 constexpr int kMaxCoverageHops = 4;  // chains of choices longer than this are treated as not covering
 
 
-// Whether `target` emits the surface at a pixel of `view` (depth d): its depth agrees within the tolerance, or,
-// with estimated noise factors, within coverage_tolerance_sigmas sigma of the difference of the two depth maps.
-bool CoverageAgrees(const SacView& view, double d, uint32_t v, const SacView& tv, uint32_t target,
-                    const DepthLookup& hit, const std::vector<double>& noise_factor, const SacOptions& options) {
-  if (DepthAgrees(tv, hit, options)) return true;
+// Whether view `target` emits the surface at a pixel of view v (depth d): its depth agrees within the tolerance,
+// or, with estimated noise factors, within coverage_tolerance_sigmas sigma of the difference of the two depths.
+bool CoverageAgrees(const std::vector<SacView>& views, uint32_t v, double d, uint32_t target, const DepthLookup& hit,
+                    const std::vector<double>& noise_factor, const SacOptions& options) {
+  if (DepthAgrees(views[target], hit, options)) return true;
   if (noise_factor.empty() || options.coverage_tolerance_sigmas <= 0 || !hit.inside ||
       !IsValidDepth(hit.stored_depth_m)) {
     return false;
   }
-  const double sigma_own = noise_factor[v] * DepthNoiseScale(view, d);
-  const double sigma_target = noise_factor[target] * DepthNoiseScale(tv, hit.z_m);
-  return std::abs(hit.stored_depth_m - hit.z_m) <= options.coverage_tolerance_sigmas * std::hypot(sigma_own, sigma_target);
+  return AgreeWithinSigmas(hit.stored_depth_m - hit.z_m, DepthSigmaM(views, noise_factor, v, d),
+                           DepthSigmaM(views, noise_factor, target, hit.z_m), options.coverage_tolerance_sigmas);
 }
 
 }  // namespace
@@ -72,7 +71,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           for (int hop = 0; hop < kMaxCoverageHops && target != v; ++hop) {
             const SacView& tv = views[target];
             const DepthLookup hit = LookupDepth(tv, point);
-            if (!CoverageAgrees(view, d, v, tv, target, hit, noise_factor, options)) break;
+            if (!CoverageAgrees(views, v, d, target, hit, noise_factor, options)) break;
             const uint32_t next =
                 chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
             if (next == target) {
@@ -94,7 +93,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           // With estimated noise: how many observers should agree, sum of P(|difference| <= tolerance).
           double expected_agree = 0.0;
           const bool noise_aware = !noise_factor.empty() && options.outlier_expected_factor > 0;
-          const double sigma_own = noise_aware ? noise_factor[v] * DepthNoiseScale(view, d) : 0.0;
+          const double sigma_own = noise_aware ? DepthSigmaM(views, noise_factor, v, d) : 0.0;
           for (const uint32_t b : neighbors[v]) {
             const DepthLookup hit = LookupDepth(views[b], point);
             if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
@@ -109,7 +108,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
             if (!observes) continue;
             ++observers;
             if (noise_aware) {
-              const double sigma_b = noise_factor[b] * DepthNoiseScale(views[b], hit.z_m);
+              const double sigma_b = DepthSigmaM(views, noise_factor, b, hit.z_m);
               expected_agree += std::erf(tolerance / (std::hypot(sigma_own, sigma_b) * std::sqrt(2.0)));
             }
           }

@@ -7,7 +7,6 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
-#include "core/depth_combine.h"
 #include "core/sac_tolerance.h"
 
 namespace sacfuse {
@@ -28,8 +27,8 @@ uint32_t NodeAtProjection(const SacView& view_b, uint32_t b, const Eigen::Vector
       return kNone;
     }
     const double sigma_b = noise_factor[b] * DepthNoiseScale(view_b, lookup.z_m);
-    if (std::abs(lookup.stored_depth_m - lookup.z_m) > options.correspondence_tolerance_sigmas *
-                                                          std::hypot(sigma_a_m, sigma_b)) {
+    if (!AgreeWithinSigmas(lookup.stored_depth_m - lookup.z_m, sigma_a_m, sigma_b,
+                           options.correspondence_tolerance_sigmas)) {
       return kNone;
     }
   }
@@ -67,7 +66,7 @@ Correspondences ByReprojection(const std::vector<SacView>& views, const NodeTabl
     if (!node.valid) return;
     if (!dense) {
       const double sigma_a =
-          noise_factor.empty() ? 0.0 : noise_factor[node.view] * DepthNoiseScale(views[node.view], node.depth_m);
+          noise_factor.empty() ? 0.0 : DepthSigmaM(views, noise_factor, node.view, node.depth_m);
       for (size_t k = 0; k < neighbors[node.view].size(); ++k) {
         const uint32_t b = neighbors[node.view][k];
         out[k] = NodeAtProjection(views[b], b, node.point_in_world, nodes, options, /*depth_test=*/true, noise_factor,

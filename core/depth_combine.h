@@ -25,6 +25,7 @@
 
 #include <Eigen/Core>
 
+#include "core/sac_tolerance.h"
 #include "core/sac_view.h"
 
 namespace sacfuse {
@@ -50,9 +51,6 @@ struct RayHit {
 // its surface is more than `max_offset_m` away, or the intersection is grazing (|f'| < min_slope).
 bool IntersectRay(const SacView& b, const Eigen::Vector3d& at_depth, const Eigen::Vector3d& at_next, double depth_m,
                   double step_m, double max_offset_m, double min_slope, RayHit* hit);
-
-// Relative z-error scale of a depth map at depth z (see the header): z * gsd(z), up to the factor k.
-inline double DepthNoiseScale(const SacView& view, double z_m) { return z_m * view.GsdAt(z_m); }
 
 struct CombinedDepth {
   double depth_m = 0.0;   // refined depth along the view's ray (the input depth when nothing agreed)

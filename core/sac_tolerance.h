@@ -1,10 +1,30 @@
 #pragma once
 // Depth agreement tolerance, shared by correspondences, collapse and the outlier test so that "consistent" means
-// one thing everywhere: |z_a - z_b| <= depth_tolerance_gsd * GSD(z) + depth_tolerance_rel * z.
+// one thing everywhere: |z_a - z_b| <= depth_tolerance_gsd * GSD(z) + depth_tolerance_rel * z; and, with the
+// per-view noise factors of core/view_noise.h, the noise-aware variants.
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 #include "core/sac_options.h"
 #include "core/sac_view.h"
 
 namespace sacfuse {
+
+// Relative z-error scale of a depth map at depth z: z * gsd(z) = z^2 / focal (stereo: sigma_z = z^2 sigma_d / (f B)),
+// up to the view's noise factor k.
+inline double DepthNoiseScale(const SacView& view, double z_m) { return z_m * view.GsdAt(z_m); }
+
+// Estimated z-noise of view i at depth z, metres: k_i z^2 / f (noise_factor from EstimateViewNoiseFactors).
+inline double DepthSigmaM(const std::vector<SacView>& views, const std::vector<double>& noise_factor, uint32_t i,
+                          double z_m) {
+  return noise_factor[i] * DepthNoiseScale(views[i], z_m);
+}
+
+// Whether two depths differing by `difference_m` agree within `sigmas` sigma of their difference.
+inline bool AgreeWithinSigmas(double difference_m, double sigma_a_m, double sigma_b_m, double sigmas) {
+  return std::abs(difference_m) <= sigmas * std::hypot(sigma_a_m, sigma_b_m);
+}
 
 inline double DepthToleranceM(const SacView& view, double depth_m, const SacOptions& options) {
   return options.depth_tolerance_gsd * view.GsdAt(depth_m) + options.depth_tolerance_rel * depth_m;
