@@ -15,7 +15,7 @@ void ValidateConsistencyOptions(const ConsistencyOptions& o) {
   c.ThrowIfFailed("consistency options");
 }
 
-MethodStats RunConsistencyFusion(const std::vector<SacView>& views, const ConsistencyOptions& options,
+FusionStats RunConsistencyFusion(const std::vector<SacView>& views, const ConsistencyOptions& options,
                                  PointSink& sink, const ViewPlan* given_plan) {
   ValidateConsistencyOptions(options);
   const auto start = std::chrono::steady_clock::now();
@@ -46,7 +46,7 @@ MethodStats RunConsistencyFusion(const std::vector<SacView>& views, const Consis
     out->view_index = views[v].view.index;
     return true;
   };
-  MethodStats stats;
+  FusionStats stats;
   RunReferenceViewPasses(views, plan, {"redundant_hits", "occluded_hits"}, fn, sink, &stats);
   stats.stage_seconds.emplace_back(
       "fuse", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

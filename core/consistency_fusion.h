@@ -14,7 +14,7 @@
 // precision (core/method_views.h) — and the later views only add what it did not see. Neighbours earlier in
 // the order are not touched (they have emitted already). No minimum number of agreeing views: a pixel no
 // earlier view removed is kept even if no other view sees it (as [15]).
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/method_views.h"
 #include "core/point.h"
 #include "core/sac_view.h"
@@ -33,7 +33,7 @@ void ValidateConsistencyOptions(const ConsistencyOptions& options);
 // `plan` null = ViewPlanFromDepth(views, NeighborViewOptions{}). Superpixels are not used (may be null).
 // Counters: redundant_hits, occluded_hits (projections that removed a neighbour's depth; a depth may be hit more
 // than once), skipped_marked (valid pixels skipped because an earlier view removed them).
-MethodStats RunConsistencyFusion(const std::vector<SacView>& views, const ConsistencyOptions& options,
+FusionStats RunConsistencyFusion(const std::vector<SacView>& views, const ConsistencyOptions& options,
                                  PointSink& sink, const ViewPlan* plan = nullptr);
 
 }  // namespace sacfuse

@@ -36,7 +36,7 @@ TEST(ConsistencyFusionTest, AgreeingViewsKeepEachSurfacePointOnceFromTheFirstVie
   }
   const auto views = block.SacViews();
   CollectingSink sink;
-  const MethodStats stats = RunConsistencyFusion(views, ConsistencyOptions{}, sink, nullptr);
+  const FusionStats stats = RunConsistencyFusion(views, ConsistencyOptions{}, sink, nullptr);
   // Equal heights: equal precision, so views go in index order; view 0 keeps all its 120 x 90 pixels, view 1
   // only its 48 columns east of view 0, view 2 its 48 columns east of view 1.
   EXPECT_EQ(stats.emitted_per_view[0], 120u * 90u);
@@ -66,7 +66,7 @@ TEST(ConsistencyFusionTest, TheMorePreciseViewIsTheRepresentative) {
   const ViewPlan plan = ViewPlanFromDepth(views, NeighborViewOptions{});
   ASSERT_EQ(plan.order, (std::vector<uint32_t>{1, 0}));
   CollectingSink sink;
-  const MethodStats stats = RunConsistencyFusion(views, ConsistencyOptions{}, sink, &plan);
+  const FusionStats stats = RunConsistencyFusion(views, ConsistencyOptions{}, sink, &plan);
   EXPECT_EQ(stats.emitted_per_view[1], 120u * 90u);  // all of the low view
   // The high view keeps only what lies outside the low view's footprint (its 30 border columns on each side and
   // 22-23 border rows); its pixels over the low footprint are hit by the finer view's points.
@@ -91,7 +91,7 @@ TEST(ConsistencyFusionTest, OccludedDepthsAreRemovedAndOnlyRelativeAgreementCoun
   plan.neighbors[1] = {0};
   plan.neighbors[2] = {0};
   CollectingSink sink;
-  const MethodStats stats = RunConsistencyFusion(views, ConsistencyOptions{}, sink, &plan);
+  const FusionStats stats = RunConsistencyFusion(views, ConsistencyOptions{}, sink, &plan);
   EXPECT_EQ(stats.emitted_per_view[0], 120u * 90u);
   EXPECT_EQ(stats.emitted_per_view[1], 48u * 90u);   // the 72 overlapping columns were occluded
   EXPECT_EQ(stats.emitted_per_view[2], 120u * 90u);  // nothing removed
@@ -102,7 +102,7 @@ TEST(ConsistencyFusionTest, OccludedDepthsAreRemovedAndOnlyRelativeAgreementCoun
   near.Add(v0, PlaneDepth(v0));
   near.Add(v1, PlaneDepth(v1, 0.005 * kHeight));
   CollectingSink sink2;
-  const MethodStats s2 = RunConsistencyFusion(near.SacViews(), ConsistencyOptions{}, sink2, nullptr);
+  const FusionStats s2 = RunConsistencyFusion(near.SacViews(), ConsistencyOptions{}, sink2, nullptr);
   EXPECT_EQ(s2.emitted_per_view[1], 48u * 90u);
   EXPECT_EQ(s2.counter("redundant_hits"), 72u * 90u);
   EXPECT_EQ(s2.counter("occluded_hits"), 0u);

@@ -26,10 +26,10 @@ void ValidateDisparityNormalOptions(const DisparityNormalOptions& o) {
   c.ThrowIfFailed("disparity_normal options");
 }
 
-MethodStats RunDisparityNormalFusion(const std::vector<SacView>& views, const DisparityNormalOptions& options,
+FusionStats RunDisparityNormalFusion(const std::vector<SacView>& views, const DisparityNormalOptions& options,
                                      PointSink& sink, const ViewPlan* given_plan) {
   ValidateDisparityNormalOptions(options);
-  MethodStats stats;
+  FusionStats stats;
   auto start = std::chrono::steady_clock::now();
   const ViewPlan plan = given_plan != nullptr ? *given_plan : ViewPlanFromDepth(views, NeighborViewOptions{});
   CheckViewPlan(plan, views.size());

@@ -15,7 +15,7 @@
 // fusibile). Otherwise p is dropped.
 // Normals: the input's normal maps are NOT read; every view's normals are computed from its depth by a local
 // plane fit (core/depth_normals.h, window 2 r + 1), in core, so every input format behaves alike.
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/method_views.h"
 #include "core/point.h"
 #include "core/sac_view.h"
@@ -35,7 +35,7 @@ void ValidateDisparityNormalOptions(const DisparityNormalOptions& options);
 // `plan` null = ViewPlanFromDepth(views, NeighborViewOptions{}). Superpixels are not used (may be null).
 // Counters: inconsistent (dropped: too few consistent views), members_averaged (neighbour points averaged in),
 // skipped_marked (pixels used by an earlier point).
-MethodStats RunDisparityNormalFusion(const std::vector<SacView>& views, const DisparityNormalOptions& options,
+FusionStats RunDisparityNormalFusion(const std::vector<SacView>& views, const DisparityNormalOptions& options,
                                      PointSink& sink, const ViewPlan* plan = nullptr);
 
 }  // namespace sacfuse

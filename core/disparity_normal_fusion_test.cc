@@ -35,7 +35,7 @@ TEST(DisparityNormalFusionTest, PointsSeenByTwoMoreViewsAreAveragedOnceAndTheRes
     block.Add(v, PlaneDepth(v), testing::UniformImage(PlaneDepth(v), static_cast<uint8_t>(30 * i), 0, 0));
   }
   CollectingSink sink;
-  const MethodStats stats = RunDisparityNormalFusion(block.SacViews(), DisparityNormalOptions{}, sink);
+  const FusionStats stats = RunDisparityNormalFusion(block.SacViews(), DisparityNormalOptions{}, sink);
   // Only the 24 columns all three views see have two consistent neighbours: view 0 emits them (averages of
   // three identical points), marking the other views' pixels there as used; nothing else qualifies.
   EXPECT_EQ(stats.emitted_per_view[0], 24u * 90u);
@@ -64,7 +64,7 @@ TEST(DisparityNormalFusionTest, ABiasedViewIsNotAveragedIn) {
   block.Add(v2, PlaneDepth(v2));
   block.Add(v3, PlaneDepth(v3, 20.0));
   CollectingSink sink;
-  const MethodStats stats = RunDisparityNormalFusion(block.SacViews(), DisparityNormalOptions{}, sink);
+  const FusionStats stats = RunDisparityNormalFusion(block.SacViews(), DisparityNormalOptions{}, sink);
   EXPECT_EQ(stats.emitted_per_view[0], 24u * 90u);  // columns 48..71 of view 0: views 1 and 2 both agree
   EXPECT_EQ(stats.emitted_per_view[3], 0u);
   for (const FusedPoint& p : sink.points()) EXPECT_NEAR(p.point_in_world.z(), kGroundZ, 1e-6);
@@ -93,7 +93,7 @@ TEST(DisparityNormalFusionTest, NormalsMustAgreeWhereDisparitiesDo) {
   DisparityNormalOptions no_normal_test = options;
   no_normal_test.normal_threshold_deg = 90.0;
   CollectingSink line;
-  const MethodStats stats = RunDisparityNormalFusion(block.SacViews(), no_normal_test, line);
+  const FusionStats stats = RunDisparityNormalFusion(block.SacViews(), no_normal_test, line);
   EXPECT_GT(stats.emitted, 2u * 90u);   // a strip along the crossing line: 90 rows, ~7 pixels wide
   EXPECT_LT(stats.emitted, 20u * 90u);
   for (const FusedPoint& p : line.points()) EXPECT_NEAR(p.point_in_world.x(), kEast + 4.0, 1.0);

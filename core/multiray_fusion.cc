@@ -18,7 +18,7 @@ void ValidateMultirayOptions(const MultirayOptions& o) {
   c.ThrowIfFailed("multiray options");
 }
 
-MethodStats RunMultirayFusion(const std::vector<SacView>& views, const MultirayOptions& options, PointSink& sink,
+FusionStats RunMultirayFusion(const std::vector<SacView>& views, const MultirayOptions& options, PointSink& sink,
                               const ViewPlan* given_plan) {
   ValidateMultirayOptions(options);
   const auto start = std::chrono::steady_clock::now();
@@ -81,7 +81,7 @@ MethodStats RunMultirayFusion(const std::vector<SacView>& views, const MultirayO
     (*counters)[kRays] += static_cast<uint64_t>(n);
     return true;
   };
-  MethodStats stats;
+  FusionStats stats;
   RunReferenceViewPasses(views, plan, {"too_few_rays", "rays_triangulated", "singular"}, fn, sink, &stats);
   stats.stage_seconds.emplace_back(
       "fuse", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

@@ -17,7 +17,7 @@
 // point is triangulated once). Colour: the mean of the members' colours; source view: the reference view i.
 // Note what reprojected correspondences imply: member q is where X_i projects, rounded to a pixel, so the rays
 // of the group pass within half a pixel of X_i; the depth terms carry the members' own depth measurements.
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/method_views.h"
 #include "core/point.h"
 #include "core/sac_view.h"
@@ -37,7 +37,7 @@ void ValidateMultirayOptions(const MultirayOptions& options);
 // `plan` null = ViewPlanFromDepth(views, NeighborViewOptions{}). Superpixels are not used (may be null).
 // Counters: too_few_rays (dropped), rays_triangulated (members over all emitted points, reference included),
 // singular (dropped: parallel rays without depth terms), skipped_marked (pixels used by an earlier group).
-MethodStats RunMultirayFusion(const std::vector<SacView>& views, const MultirayOptions& options, PointSink& sink,
+FusionStats RunMultirayFusion(const std::vector<SacView>& views, const MultirayOptions& options, PointSink& sink,
                               const ViewPlan* plan = nullptr);
 
 }  // namespace sacfuse

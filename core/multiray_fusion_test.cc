@@ -35,7 +35,7 @@ TEST(MultirayFusionTest, EachSurfacePointIsTriangulatedOnceFromAllItsRays) {
     block.Add(v, PlaneDepth(v));
   }
   CollectingSink sink;
-  const MethodStats stats = RunMultirayFusion(block.SacViews(), MultirayOptions{}, sink);
+  const FusionStats stats = RunMultirayFusion(block.SacViews(), MultirayOptions{}, sink);
   // View 0 seeds a group wherever another view sees its pixel (its 72 eastern columns); view 1 then seeds its 48
   // columns east of view 0, which view 2 sees; view 2's remaining 48 columns have a single ray: dropped.
   EXPECT_EQ(stats.emitted_per_view[0], 72u * 90u);
@@ -59,7 +59,7 @@ TEST(MultirayFusionTest, BiasedDepthsAreNoMembersAndPureRaysIgnoreDepth) {
   block.Add(v1, PlaneDepth(v1, 2.0));
   block.Add(v2, PlaneDepth(v2));
   CollectingSink sink;
-  const MethodStats stats = RunMultirayFusion(block.SacViews(), MultirayOptions{}, sink);
+  const FusionStats stats = RunMultirayFusion(block.SacViews(), MultirayOptions{}, sink);
   EXPECT_EQ(stats.emitted_per_view[0], 24u * 90u);  // the columns view 2 also sees
   EXPECT_EQ(stats.emitted_per_view[1], 0u);
   for (const FusedPoint& p : sink.points()) EXPECT_NEAR(p.point_in_world.z(), kGroundZ, 1e-6);

@@ -26,7 +26,7 @@ PixelMarks::PixelMarks(const std::vector<SacView>& views) {
 
 void RunReferenceViewPasses(const std::vector<SacView>& views, const ViewPlan& plan,
                             const std::vector<std::string>& counter_names, const ReferencePixelFn& fn,
-                            PointSink& sink, MethodStats* stats) {
+                            PointSink& sink, FusionStats* stats) {
   CheckViewPlan(plan, views.size());
   if (counter_names.size() > kMaxPassCounters) throw Error("too many pass counters");
   PixelMarks marks(views);

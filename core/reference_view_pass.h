@@ -19,7 +19,7 @@
 
 #include <Eigen/Core>
 
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/method_views.h"
 #include "core/point.h"
 #include "core/sac_view.h"
@@ -56,6 +56,6 @@ using ReferencePixelFn = std::function<bool(uint32_t view, int row, int col, flo
 // in counter_names (plus "skipped_marked": valid pixels skipped because an earlier view marked them).
 void RunReferenceViewPasses(const std::vector<SacView>& views, const ViewPlan& plan,
                             const std::vector<std::string>& counter_names, const ReferencePixelFn& fn,
-                            PointSink& sink, MethodStats* stats);
+                            PointSink& sink, FusionStats* stats);
 
 }  // namespace sacfuse

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/collapse.h"
+#include "core/fusion_method.h"
 #include "core/point.h"
 #include "core/sac_labeling.h"
 #include "core/sac_options.h"
@@ -28,12 +29,11 @@ struct SacStats {
 };
 
 using SacProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
-// Which pixels this run emits, judged on the pixel's own back-projected point (before the averaging combine moves
-// it along its ray), so that tiles sharing a halo emit every pixel exactly once although their averages differ
-// slightly. Empty = every pixel.
-using PixelOwner = std::function<bool(const Eigen::Vector3d& point_in_world)>;
 
 // Fuses `views` and streams the points to `sink`, view by view in input order. Deterministic for any thread count.
+// `owner` (core/fusion_method.h) is judged on each pixel's own back-projected point (before the averaging combine
+// moves it along its ray), so that tiles sharing a halo emit every pixel exactly once although their averages
+// differ slightly.
 SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& options, PointSink& sink,
                       const SacProgress& progress = {}, const PixelOwner& owner = {});
 

@@ -39,10 +39,10 @@ double MedianGsdFromDepth(const std::vector<SacView>& views) {
   return gsd[gsd.size() / 2];
 }
 
-MethodStats RunTsdfFusion(const std::vector<SacView>& views, const TsdfOptions& options, PointSink& sink,
+FusionStats RunTsdfFusion(const std::vector<SacView>& views, const TsdfOptions& options, PointSink& sink,
                           double gsd_m, const FootprintBox* region_xy) {
   ValidateTsdfOptions(options);
-  MethodStats stats;
+  FusionStats stats;
   stats.emitted_per_view.assign(views.size(), 0);
   stats.input_per_view.assign(views.size(), 0);
   for (size_t v = 0; v < views.size(); ++v) {

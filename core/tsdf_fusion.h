@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/method_views.h"
 #include "core/point.h"
 #include "core/sac_view.h"
@@ -39,7 +39,7 @@ double MedianGsdFromDepth(const std::vector<SacView>& views);
 // tile uses the same voxel grid (voxels are aligned to multiples of the voxel size in world coordinates).
 // Superpixels are not used (may be null). Counters: voxel_blocks, voxels (allocated).
 // `region_xy`, when given, restricts the voxel grid (and so the points) to that XY box: a tile's halo.
-MethodStats RunTsdfFusion(const std::vector<SacView>& views, const TsdfOptions& options, PointSink& sink,
+FusionStats RunTsdfFusion(const std::vector<SacView>& views, const TsdfOptions& options, PointSink& sink,
                           double gsd_m = 0.0, const FootprintBox* region_xy = nullptr);
 
 }  // namespace sacfuse

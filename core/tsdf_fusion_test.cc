@@ -34,7 +34,7 @@ TEST(TsdfFusionTest, APlaneBecomesOnePointPerVoxelColumnOnThePlane) {
   const auto views = block.SacViews();
   ASSERT_NEAR(MedianGsdFromDepth(views), kGsd, 1e-6);
   CollectingSink sink;
-  const MethodStats stats = RunTsdfFusion(views, TsdfOptions{}, sink);  // voxel = 1 GSD, truncation 8
+  const FusionStats stats = RunTsdfFusion(views, TsdfOptions{}, sink);  // voxel = 1 GSD, truncation 8
   ASSERT_GT(sink.points().size(), 3000u);
   std::set<std::pair<long, long>> columns;
   for (const FusedPoint& p : sink.points()) {

@@ -190,7 +190,7 @@ void TsdfVolume::Integrate(const std::vector<SacView>& views, uint32_t v) {
 }
 
 void TsdfVolume::ExtractPoints(const std::vector<SacView>& views, double min_weight, PointSink& sink,
-                               MethodStats* stats) const {
+                               FusionStats* stats) const {
   std::vector<uint32_t> order(blocks_.size());
   for (uint32_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return keys_[a] < keys_[b]; });

@@ -11,7 +11,7 @@
 
 #include <Eigen/Core>
 
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/method_views.h"
 #include "core/point.h"
 #include "core/sac_view.h"
@@ -53,7 +53,7 @@ class TsdfVolume {
   // projects onto (clamped to its raster). A crossing within 1 % of a voxel of a voxel
   // centre is put at that centre and emitted once (several edges of the voxel would give it). Blocks in ascending key order, voxels x
   // fastest: deterministic. Adds emitted / emitted_per_view (by view position) to *stats.
-  void ExtractPoints(const std::vector<SacView>& views, double min_weight, PointSink& sink, MethodStats* stats) const;
+  void ExtractPoints(const std::vector<SacView>& views, double min_weight, PointSink& sink, FusionStats* stats) const;
 
   // Allocates no block whose XY extent misses `region` (a tile's halo: what lies outside cannot reach its core).
   // Voxels inside keep exactly the values they would have without it.

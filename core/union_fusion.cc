@@ -4,9 +4,9 @@
 
 namespace sacfuse {
 
-MethodStats RunUnionFusion(const std::vector<SacView>& views, PointSink& sink) {
+FusionStats RunUnionFusion(const std::vector<SacView>& views, PointSink& sink) {
   constexpr size_t kChunk = 4096;
-  MethodStats stats;
+  FusionStats stats;
   stats.emitted_per_view.assign(views.size(), 0);
   stats.input_per_view.assign(views.size(), 0);
   std::vector<FusedPoint> chunk;

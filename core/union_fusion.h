@@ -1,15 +1,14 @@
 #pragma once
-// `fusion.method: union` over views held in memory (a tile's windows): every valid depth pixel becomes a point
-// (no fusion; the "before fusion" baseline), views in input order, rows in order. The untiled job streams one
-// view at a time with BackprojectDepthMap (core/backproject.h) instead; both give the same points.
+// `fusion.method: union` over views held in memory (the whole block or a tile's windows): every valid depth pixel
+// becomes a point (no fusion; the "before fusion" baseline), views in input order, rows in order.
 #include <vector>
 
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/point.h"
 #include "core/sac_view.h"
 
 namespace sacfuse {
 
-MethodStats RunUnionFusion(const std::vector<SacView>& views, PointSink& sink);
+FusionStats RunUnionFusion(const std::vector<SacView>& views, PointSink& sink);
 
 }  // namespace sacfuse

@@ -67,10 +67,6 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
     spdlog::warn("the superpixel pass needs ~{:.2f} GiB for the largest view, more than resources.memory_gb = {}",
                  GiB(superpixel_bytes), config.resources.memory_gb);
   }
-  if (config.fusion.method == "union" && config.tiling.tile_size_m <= 0) {
-    d.reason = "method union runs untiled unless tiling.tile_size_m is given (streams one view at a time)";
-    return d;
-  }
   if (config.tiling.tile_size_m > 0) {
     d.tiled = true;
     d.tile_size_m = config.tiling.tile_size_m;

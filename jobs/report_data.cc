@@ -1,3 +1,4 @@
+#include "jobs/output_layout.h"
 #include "jobs/report_data.h"
 
 #include <chrono>
@@ -201,19 +202,19 @@ ReportData GatherReportData(const JobConfig& config) {
   d.reference_path = config.evaluation.reference;
   const fs::path dir(config.output.dir);
   std::string text;
-  if (ReadText(dir / "run_report.json", &text)) {
+  if (ReadText(RunReportPath(config), &text)) {
     try {
       d.run = ParseRunReportJson(text);
     } catch (const std::exception& e) {
-      d.warnings.push_back((dir / "run_report.json").string() + " unreadable (" + e.what() + ")");
+      d.warnings.push_back(RunReportPath(config) + " unreadable (" + e.what() + ")");
     }
   } else {
-    d.warnings.push_back("no " + (dir / "run_report.json").string() + ": run numbers missing");
+    d.warnings.push_back("no " + RunReportPath(config) + ": run numbers missing");
   }
-  if (!ReadText(dir / "sacfuse.effective.yaml", &d.effective_config)) {
-    d.warnings.push_back("no " + (dir / "sacfuse.effective.yaml").string());
+  if (!ReadText(EffectiveConfigPath(config), &d.effective_config)) {
+    d.warnings.push_back("no " + EffectiveConfigPath(config));
   }
-  d.cloud.path = (dir / "fused.las").string();
+  d.cloud.path = FusedLasPath(config);
   std::error_code ec;
   if (fs::exists(d.cloud.path, ec)) {
     try {
@@ -225,7 +226,7 @@ ReportData GatherReportData(const JobConfig& config) {
         d.cloud.max[a] = h.max[a];
       }
     } catch (const std::exception& e) {
-      d.warnings.push_back(std::string("fused.las unreadable: ") + e.what());
+      d.warnings.push_back(fs::path(d.cloud.path).filename().string() + " unreadable: " + e.what());
     }
   }
   const fs::path eval_path = dir / "eval.json";

@@ -21,6 +21,7 @@
 #include "jobs/report_png.h"
 #include "jobs/resource_usage.h"
 #include "jobs/tile_marker.h"
+#include "jobs/superpixel_cache.h"
 #include "jobs/tiled_run.h"
 
 namespace sacfuse {
@@ -101,7 +102,7 @@ void FillBeforeCountsFromCache(const DepthBlock& input, const JobConfig& config,
   if (input.views().size() != d->run.views.size()) return;
   size_t not_cached = 0;
   const std::vector<uint64_t> counts =
-      ValidDepthPixelsPerView(input, TileCacheDir(config), &not_cached, /*count_rasters=*/false);
+      ValidDepthPixelsPerView(input, SuperpixelCacheDir(config), &not_cached, /*count_rasters=*/false);
   for (size_t i = 0; i < counts.size(); ++i) d->run.views[i].before = counts[i];
   d->warnings.push_back("run_report.json has no per-view 'before' counts (written by an older sacfuse); they were "
                         "taken from the superpixel cache" +

@@ -1,3 +1,4 @@
+#include "jobs/output_layout.h"
 #include "jobs/run_fusion.h"
 
 #include <algorithm>
@@ -7,7 +8,6 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
-#include "core/backproject.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
@@ -16,45 +16,65 @@
 #include "io/las_writer.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/memory_model.h"
-#include "jobs/method_block.h"
-#include "jobs/report_input_counts.h"
+#include "jobs/block_view_source.h"
+#include "jobs/fuse_views.h"
+#include "jobs/fusion_methods.h"
+#include "jobs/method_geometry.h"
+#include "jobs/point_sinks.h"
+#include "jobs/superpixel_cache.h"
+#include "jobs/tile_plan.h"
 #include "jobs/report_writer.h"
 #include "jobs/resource_usage.h"
 #include "jobs/thread_limit.h"
-#include "jobs/sac_block.h"
 #include "jobs/tiled_run.h"
 #include "jobs/version.h"
 
 namespace sacfuse {
 namespace {
 
-// Counts points per source view on their way to the real sink.
-class CountingSink : public PointSink {
- public:
-  explicit CountingSink(PointSink& next) : next_(next) {}
-  void Write(const FusedPoint* points, size_t count) override {
-    for (size_t i = 0; i < count; ++i) {
-      if (points[i].view_index >= per_view_.size()) per_view_.resize(points[i].view_index + 1, 0);
-      ++per_view_[points[i].view_index];
-    }
-    next_.Write(points, count);
-  }
-  uint64_t count(uint32_t view) const { return view < per_view_.size() ? per_view_[view] : 0; }
-
- private:
-  PointSink& next_;
-  std::vector<uint64_t> per_view_;
-};
-
-
-nlohmann::json MethodStatsJson(const MethodStats& m, bool tiled) {
+nlohmann::json FusionStatsJson(const FusionStats& m, bool tiled) {
   nlohmann::json counters = nlohmann::json::object();
   for (const auto& [name, n] : m.counters) counters[name] = n;
+  nlohmann::json histograms = nlohmann::json::object();
+  for (const auto& [name, bins] : m.histograms) histograms[name] = bins;
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [stage, secs] : m.stage_seconds) stages[stage] = secs;
   // Tiled: emitted and the counters include the points each tile computed in its halo (left to its neighbours).
   return {{"pixels_in", m.input_pixels}, {"points_emitted", m.emitted}, {"emitted_includes_halos", tiled},
-          {"counters", counters}, {"stage_seconds", stages}};
+          {"counters", counters}, {"histograms", histograms}, {"stage_seconds", stages}};
+}
+
+// SAC's counters under the names the HTML report reads (jobs/report_data.h).
+nlohmann::json SacSectionJson(const FusionStats& f, size_t superpixels_computed) {
+  const uint64_t valid_nodes = f.counter("valid_nodes");
+  const std::vector<uint64_t>* sizes = f.histogram("netlet_size");
+  nlohmann::json stages = nlohmann::json::object();
+  for (const auto& [stage, secs] : f.stage_seconds) stages[stage] = secs;
+  nlohmann::json j = {
+      {"nodes", f.counter("nodes")},
+      {"valid_nodes", valid_nodes},
+      {"mean_correspondences",
+       valid_nodes > 0 ? static_cast<double>(f.counter("correspondences")) / static_cast<double>(valid_nodes) : 0.0},
+      {"netlets", f.counter("netlets")},
+      {"netlets_proven_optimal", f.counter("netlets_proven_optimal")},
+      {"netlet_size_histogram", sizes != nullptr ? *sizes : std::vector<uint64_t>{}},
+      {"nodes_keeping_own_view", f.counter("nodes_keeping_own_view")},
+      {"nodes_relabelled", f.counter("nodes_relabelled")},
+      {"pixels_in", f.counter("pixels_in")},
+      {"pixels_collapsed", f.counter("pixels_collapsed")},
+      {"pixels_kept_uncovered", f.counter("pixels_kept_uncovered")},
+      {"pixels_outliers", f.counter("pixels_outliers")},
+      {"points_emitted", f.emitted},
+      {"superpixels_computed", superpixels_computed},
+      {"stage_seconds", stages}};
+  const std::vector<double>* noise = f.view_value("noise_factor");
+  if (noise != nullptr && !noise->empty()) {
+    // Estimated depth noise of the views (core/view_noise.h): sigma = k z^2 / focal metres.
+    std::vector<double> k = *noise;
+    std::sort(k.begin(), k.end());
+    j["noise_factor"] = {{"min", k.front()}, {"median", k[k.size() / 2]}, {"max", k.back()}};
+  }
+  return j;
 }
 
 void WriteRunReport(const RunSummary& s, const JobConfig& config) {
@@ -78,31 +98,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                              {{"superpixels", s.superpixel_seconds}, {"tiles", s.tiles_seconds},
                               {"merge", s.merge_seconds}}},
                             {"views", views}};
-  if (s.has_sac_stats) {
-    nlohmann::json stages = nlohmann::json::object();
-    for (const auto& [stage, secs] : s.sac.stage_seconds) stages[stage] = secs;
-    j["sac"] = {{"nodes", s.sac.nodes},
-                {"valid_nodes", s.sac.valid_nodes},
-                {"mean_correspondences", s.sac.mean_correspondences},
-                {"netlets", s.sac.labeling.netlets},
-                {"netlets_proven_optimal", s.sac.labeling.proven_optimal},
-                {"netlet_size_histogram", s.sac.labeling.size_histogram},
-                {"nodes_keeping_own_view", s.sac.labeling.nodes_keeping_own_view},
-                {"nodes_relabelled", s.sac.labeling.nodes_relabelled},
-                {"pixels_in", s.sac.collapse.input_pixels},
-                {"pixels_collapsed", s.sac.collapse.collapsed},
-                {"pixels_kept_uncovered", s.sac.collapse.kept_uncovered},
-                {"pixels_outliers", s.sac.collapse.outliers},
-                {"points_emitted", s.sac.collapse.emitted},
-                {"superpixels_computed", s.superpixels_computed},
-                {"stage_seconds", stages}};
-    if (!s.sac.noise_factor.empty()) {
-      // Estimated depth noise of the views (core/view_noise.h): sigma = k z^2 / focal metres.
-      std::vector<double> k = s.sac.noise_factor;
-      std::sort(k.begin(), k.end());
-      j["sac"]["noise_factor"] = {{"min", k.front()}, {"median", k[k.size() / 2]}, {"max", k.back()}};
-    }
-  }
+  if (s.method == "sac") j["sac"] = SacSectionJson(s.fusion, s.superpixels_computed);
   if (s.tiles_run > 0) {
     nlohmann::json failed = nlohmann::json::array();
     for (const auto& [id, reason] : s.failed_tiles) failed.push_back({{"id", id}, {"reason", reason}});
@@ -110,7 +106,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                    {"tiles_run", s.tiles_run}, {"tiles_computed", s.tiles_computed},
                    {"tiles_skipped", s.tiles_skipped}, {"failed_tiles", failed}};
   }
-  if (s.has_method_stats) j["fusion"] = MethodStatsJson(s.method_stats, s.tiles_run > 0);
+  j["fusion"] = FusionStatsJson(s.fusion, s.tiles_run > 0);
   WriteFileAtomically(s.report_path, j.dump(2) + "\n");
 }
 
@@ -128,25 +124,9 @@ void CheckRerunTiles(const std::vector<std::string>& rerun_tiles, const TilePlan
   }
 }
 
-void LogSacStats(const SacStats& s) {
-  spdlog::info("SAC: {} nodes in {} Netlets ({} proven optimal); {} pixels in, {} collapsed, {} outliers, {} out",
-               s.valid_nodes, s.labeling.netlets, s.labeling.proven_optimal, s.collapse.input_pixels,
-               s.collapse.collapsed, s.collapse.outliers, s.collapse.emitted);
-}
-
-void SetSacSummary(const SacBlockResult& sac, RunSummary* summary) {
-  summary->has_sac_stats = true;
-  summary->sac = sac.stats;
-  summary->superpixels_computed = sac.superpixels_computed;
-  summary->superpixel_seconds = sac.superpixel_seconds;
-  summary->input_points = sac.stats.collapse.input_pixels;
-  LogSacStats(sac.stats);
-}
-
-// Comparison methods (jobs/fusion_methods.h): input counts per view and the method's counters.
-void SetMethodSummary(const MethodStats& stats, RunSummary* summary) {
-  summary->has_method_stats = true;
-  summary->method_stats = stats;
+// The method's stats: input counts per view, counters in the log.
+void SetFusionSummary(const FusionStats& stats, RunSummary* summary) {
+  summary->fusion = stats;
   summary->input_points = stats.input_pixels;
   for (size_t i = 0; i < summary->views.size() && i < stats.input_per_view.size(); ++i) {
     summary->views[i].input_pixels = stats.input_per_view[i];
@@ -154,12 +134,6 @@ void SetMethodSummary(const MethodStats& stats, RunSummary* summary) {
   std::string counters;
   for (const auto& [name, n] : stats.counters) counters += fmt::format(", {} {}", name, n);
   spdlog::info("{}: {} pixels in, {} points emitted{}", summary->method, stats.input_pixels, stats.emitted, counters);
-}
-
-std::string CacheDir(const JobConfig& config) {
-  return config.fusion.superpixel_cache_dir.empty()
-             ? (std::filesystem::path(config.output.dir) / "superpixels").string()
-             : config.fusion.superpixel_cache_dir;
 }
 
 // Tiled (any method): per-tile files, resume, merge (jobs/tiled_run.h).
@@ -171,12 +145,10 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
                config.fusion.method, plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
   const TiledRunOutcome tiled =
-      RunTiledSac(config, input, plan, rerun_tiles, MakeLasOptions(config), summary->las_path, progress);
-  if (config.fusion.method == "sac") {
-    SetSacSummary(tiled.block, summary);
-  } else {
-    SetMethodSummary(tiled.method_stats, summary);
-  }
+      RunTiledJob(config, input, plan, rerun_tiles, MakeLasOptions(config), summary->las_path, progress);
+  SetFusionSummary(tiled.stats, summary);
+  summary->superpixels_computed = tiled.superpixels_computed;
+  summary->superpixel_seconds = tiled.superpixel_seconds;
   summary->tiles_run = tiled.tiles_with_views;
   summary->tiles_computed = tiled.tiles_computed;
   summary->tiles_skipped = tiled.tiles_skipped;
@@ -192,27 +164,34 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
                tiled.failed.size());
 }
 
-// Untiled: SAC, the union (streamed view by view) or a comparison method, into one LAS writer.
+// Untiled: the whole block through the same FuseViews as every tile, into one LAS writer.
 void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
                 RunSummary* summary) {
   const auto& views = input.views();
+  const std::unique_ptr<FusionMethod> method = MakeFusionMethod(config.fusion, progress);
+  MethodGeometry geometry;
+  if (method->needs().block_geometry) {
+    std::vector<DepthRasterSize> sizes;
+    for (const View& view : views) sizes.push_back(input.DepthSize(view));
+    double z_min = 0, z_max = 0;
+    std::string z_source;
+    BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &z_source);
+    geometry = BlockMethodGeometry(input, sizes, z_min, z_max, NeighborOptionsOf(config.fusion.sac));
+    spdlog::info("{}: block GSD {:.3f} m from the geometry (heights [{:.1f}, {:.1f}] m from {})",
+                 config.fusion.method, geometry.gsd_m, z_min, z_max, z_source);
+  }
   LasWriter writer(summary->las_path, MakeLasOptions(config));
   CountingSink counting(writer);
-  if (config.fusion.method == "union") {
-    spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
-    for (size_t i = 0; i < views.size(); ++i) {
-      const DepthMap depth = input.ReadDepthMap(views[i]);
-      const RgbImage image = input.ReadImage(views[i]);
-      summary->views[i].input_pixels = BackprojectDepthMap(views[i], depth, &image, counting);
-      summary->input_points += summary->views[i].input_pixels;
-      if (progress) progress("fuse", i + 1, views.size());
-    }
-  } else if (config.fusion.method != "sac") {
-    SetMethodSummary(FuseWorkspaceWithMethod(input, config, counting, progress).stats, summary);
-  } else {
-    SetSacSummary(FuseWorkspaceWithSac(input, config.fusion.sac, CacheDir(config), counting, progress),
-                  summary);
-  }
+  const BlockViewSource source(input, config.fusion.sac.superpixels, SuperpixelCacheDir(config), progress);
+  const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, counting);
+  summary->superpixels_computed = fused.superpixels_computed;
+  summary->superpixel_seconds = fused.load_seconds;
+  spdlog::info("{} views loaded in {:.1f} s{}", views.size(), fused.load_seconds,
+               method->needs().superpixels
+                   ? fmt::format(" (superpixels: {} computed, {} reused from {})", fused.superpixels_computed,
+                                 views.size() - fused.superpixels_computed, SuperpixelCacheDir(config))
+                   : std::string());
+  SetFusionSummary(fused.stats, summary);
   writer.Close();
   summary->output_points = writer.num_points();
   for (size_t i = 0; i < views.size(); ++i) summary->views[i].output_points = counting.count(views[i].index);
@@ -234,9 +213,6 @@ LasWriterOptions MakeLasOptions(const JobConfig& config) {
   return o;
 }
 
-std::string FusedLasPath(const JobConfig& config) {
-  return (std::filesystem::path(config.output.dir) / "fused.las").string();
-}
 
 RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
                         const std::vector<std::string>& rerun_tiles) {
@@ -249,8 +225,8 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   RunSummary summary;
   summary.method = config.fusion.method;
   summary.las_path = FusedLasPath(config);
-  summary.effective_config_path = (std::filesystem::path(config.output.dir) / "sacfuse.effective.yaml").string();
-  summary.report_path = (std::filesystem::path(config.output.dir) / "run_report.json").string();
+  summary.effective_config_path = EffectiveConfigPath(config);
+  summary.report_path = RunReportPath(config);
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
   const std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse", config.crs);
@@ -265,7 +241,7 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.memory_budget_gib = config.resources.memory_gb;
   summary.memory_estimate_gib =
       static_cast<double>(decision.tiled ? decision.max_tile_bytes : decision.untiled_bytes) / kGiB;
-  const bool tiled = config.tiling.tile_size_m > 0;  // every method (union only when given a tile size)
+  const bool tiled = config.tiling.tile_size_m > 0;  // every method
   if (!tiled) CheckRerunTiles(rerun_tiles, nullptr);
   if (given.tiling.tile_size_m != config.tiling.tile_size_m) {
     WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));  // with the size chosen
@@ -276,18 +252,15 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   if (config.fusion.method == "sac") {
     spdlog::info("fusion method: sac (Select-and-Combine, unary '{}', correspondences '{}')",
                  config.fusion.sac.unary, config.fusion.sac.correspondence);
-  } else if (config.fusion.method != "union") {
+  } else if (config.fusion.method == "union") {
+    spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
+  } else {
     spdlog::info("fusion method: {} (comparison method; no superpixels)", config.fusion.method);
   }
   if (tiled) {
     RunTiled(config, input, progress, rerun_tiles, &summary);
   } else {
     RunUntiled(config, input, progress, &summary);
-  }
-  if (config.fusion.method == "sac") {  // per-view valid depth pixels ("before" counts) from the superpixel tables
-    const std::vector<uint64_t> valid = ValidDepthPixelsPerView(input, CacheDir(config));
-    summary.input_points = 0;
-    for (size_t i = 0; i < views.size(); ++i) summary.input_points += summary.views[i].input_pixels = valid[i];
   }
 
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

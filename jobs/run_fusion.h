@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "config/job_config.h"
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
 #include "core/sac_fusion.h"
 #include "io/las_writer.h"
 
@@ -30,10 +30,7 @@ struct RunSummary {
   double wall_seconds = 0.0;
   double cpu_seconds = 0.0;
   double peak_rss_mib = 0.0;
-  bool has_sac_stats = false;  // method == sac
-  SacStats sac;
-  bool has_method_stats = false;  // the other methods (core/method_stats.h)
-  MethodStats method_stats;
+  FusionStats fusion;  // the method's (tiled: summed over the tiles this invocation computed)
   size_t superpixels_computed = 0;
   size_t tiles_run = 0;  // tiled SAC (tiling.tile_size_m > 0): tiles with views; 0 = untiled
   size_t tiles_computed = 0;  // tiled: computed by this invocation (the rest were verified done and skipped)
@@ -44,7 +41,7 @@ struct RunSummary {
   double memory_budget_gib = 0.0;  // resources.memory_gb
   double memory_estimate_gib = 0.0;  // untiled: the whole block; tiled: the largest tile
   int threads = 0;
-  double superpixel_seconds = 0.0;  // SAC: the superpixel (and colour cache) pass
+  double superpixel_seconds = 0.0;  // the superpixel (and colour cache) pass; untiled: all loading
   double tiles_seconds = 0.0;       // tiled: the tile stage
   double merge_seconds = 0.0;       // tiled: merging the tiles into fused.las
 };
@@ -65,7 +62,5 @@ LasWriterOptions MakeLasOptions(const OutputOptions& output);
 // merge, union) is written with.
 LasWriterOptions MakeLasOptions(const JobConfig& config);
 
-// Path of the fused cloud of a config.
-std::string FusedLasPath(const JobConfig& config);
 
 }  // namespace sacfuse

@@ -10,6 +10,12 @@
 
 namespace sacfuse {
 
+std::string SuperpixelCacheDir(const JobConfig& config) {
+  return config.fusion.superpixel_cache_dir.empty()
+             ? (std::filesystem::path(config.output.dir) / "superpixels").string()
+             : config.fusion.superpixel_cache_dir;
+}
+
 std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name) {
   return (std::filesystem::path(cache_dir) / (image_name + ".spx")).string();
 }

@@ -3,10 +3,14 @@
 // tiles of one run, reuse them when the options fingerprint and raster size match.
 #include <string>
 
+#include "config/job_config.h"
 #include "core/raster.h"
 #include "core/superpixels.h"
 
 namespace sacfuse {
+
+// The superpixel (and colour) cache folder of a job: fusion.superpixel_cache_dir, or <output.dir>/superpixels.
+std::string SuperpixelCacheDir(const JobConfig& config);
 
 // Cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.spx").
 std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name);

@@ -13,8 +13,9 @@
 #include "jobs/thread_limit.h"
 #include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
+#include "jobs/superpixel_cache.h"
 #include "jobs/tiled_run.h"
-#include "jobs/tiled_sac.h"
+#include "jobs/tile_fusion.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -52,40 +53,13 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   if (tile == nullptr) {
     throw ConfigError("--id " + id + ": not a tile with views of this job (see `sacfuse plan CONFIG --list`)");
   }
-  const std::string tiles_dir = TilesDir(config);
-  const std::string hash = ResultSettingsHash(config);
-  fs::create_directories(tiles_dir);
-  TileWorkOutcome out;
-  if (VerifyTileDone(tiles_dir, id, hash).done) return out;
-  const ClaimAttempt claim = TryClaimTile(tiles_dir, id, config.tiling.claim_timeout_s);
-  if (!claim.claimed) {
-    out.result = TileWork::kHeldElsewhere;
-    out.detail = claim.holder;
-    return out;
-  }
-  TileClaimGuard guard(tiles_dir, id, claim.token);
-  if (claim.took_over) spdlog::warn("tile {}: took over a stale claim", id);
-  if (VerifyTileDone(tiles_dir, id, hash).done) return out;  // finished while we were claiming
-  const LasWriterOptions las = TileLasOptions(config, plan);
-  RecordTiledRunState(config, plan, las, 1);
+  const TileJob job{config, *input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config)};
+  fs::create_directories(job.tiles_dir);
+  if (VerifyTileDone(job.tiles_dir, id, job.hash).done) return {};
+  RecordTiledRunState(config, plan, job.las, 1);
   std::error_code ec;
   fs::remove(FusedLasPath(config), ec);  // stale until the tiles are merged again
-  try {
-    EnsureTiledSuperpixels(*input, plan, config.fusion.sac, TileCacheDir(config), {}, tile,
-                           MethodUsesSuperpixels(config.fusion.method));
-    CheckTileFitsBudget(*tile, config);
-    const TileFusionResult r = ComputeTileFiles(config, *input, plan, *tile, las, tiles_dir, hash);
-    out.result = TileWork::kComputed;
-    out.points = r.points_in_core;
-    spdlog::info("tile {}: {} views, {} points in its core, {} left to neighbours", id, tile->views.size(),
-                 r.points_in_core, r.points_outside_core);
-  } catch (const std::exception& e) {
-    spdlog::error("tile {}: failed: {}", id, e.what());
-    WriteTileFailedMarker(tiles_dir, id, e.what());
-    out.result = TileWork::kFailed;
-    out.detail = e.what();
-  }
-  return out;
+  return WorkOnTile(job, *tile, /*forced=*/false, nullptr, nullptr);
 }
 
 std::vector<std::string> MissingTiles(const JobConfig& config, const TilePlan& plan) {

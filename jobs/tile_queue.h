@@ -10,27 +10,16 @@
 
 #include "config/job_config.h"
 #include "io/las_writer.h"
-#include "jobs/sac_block.h"
+#include "core/sac_fusion.h"
 #include "jobs/tile_merge.h"
 #include "jobs/tile_plan.h"
+#include "jobs/tile_worker.h"
 
 namespace sacfuse {
 
-enum class TileWork {
-  kAlreadyDone,    // its done marker verifies: nothing to do
-  kHeldElsewhere,  // another live worker holds its claim: nothing to do here
-  kComputed,
-  kFailed,         // <id>.failed.json written
-};
-
-struct TileWorkOutcome {
-  TileWork result = TileWork::kAlreadyDone;
-  std::string detail;   // kHeldElsewhere: the holder; kFailed: the reason
-  uint64_t points = 0;  // kComputed: points in the tile's core
-};
-
 // Computes tile `id` (a tile with views of the shared plan, else ConfigError) unless it is done or claimed by a
-// live worker; the claim is removed when the tile is done or failed. Computing removes DIR/fused.las (stale).
+// live worker (jobs/tile_worker.h); the claim is removed when the tile is done or failed. Computing removes
+// DIR/fused.las (stale).
 TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id);
 
 // Tiles with views whose done marker does not verify (full checksum), grid order.

@@ -1,3 +1,4 @@
+#include "jobs/output_layout.h"
 #include "jobs/tiled_run.h"
 
 #include <unistd.h>
@@ -28,8 +29,10 @@
 #include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
 #include "jobs/tile_merge.h"
+#include "jobs/superpixel_cache.h"
 #include "jobs/tile_queue.h"
-#include "jobs/tiled_sac.h"
+#include "jobs/tile_worker.h"
+#include "jobs/tile_fusion.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -46,10 +49,6 @@ std::string ReadText(const std::string& path) {
 
 }  // namespace
 
-std::string TileCacheDir(const JobConfig& config) {
-  return config.fusion.superpixel_cache_dir.empty() ? (fs::path(config.output.dir) / "superpixels").string()
-                                                    : config.fusion.superpixel_cache_dir;
-}
 
 namespace {
 
@@ -90,17 +89,17 @@ void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const La
   WriteManifest(tiles_dir, plan, las, ResultSettingsHash(config));
 }
 
-TileFusionResult ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+FusedViews ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                                   const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
                                   const std::string& hash, ClusterTableCache* cluster_cache) {
   spdlog::info("computing tile {} (pid {})", tile.id, static_cast<long>(::getpid()));
   ClearTileState(tiles_dir, tile.id);
   const auto start = std::chrono::steady_clock::now();
-  TileFusionResult fused;
+  FusedViews fused;
   bool has_las = false;
   {
     LasWriter writer(TileLasPath(tiles_dir, tile.id), las);
-    fused = FuseTile(input, plan, tile, WithTsdfMemoryLimit(config), TileCacheDir(config), writer, cluster_cache);
+    fused = FuseTile(input, plan, tile, WithTsdfMemoryLimit(config), SuperpixelCacheDir(config), writer, cluster_cache);
     if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
       writer.Close();
       has_las = true;
@@ -126,7 +125,6 @@ void CheckTileFitsBudget(const PlannedTile& tile, const JobConfig& config) {
                           static_cast<double>(pool) / kGiB, config.resources.memory_gb));
 }
 
-std::string TilesDir(const JobConfig& config) { return (fs::path(config.output.dir) / "tiles").string(); }
 
 Eigen::Vector3d SharedTileOffset(const TilePlan& plan) {
   const auto snap = [](double v) { return std::floor(v / kOffsetSnapM) * kOffsetSnapM; };
@@ -141,14 +139,13 @@ std::vector<std::string> TileIdsWithViews(const TilePlan& plan) {
   return ids;
 }
 
-TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<std::string>& rerun_ids, LasWriterOptions las_options,
                             const std::string& fused_las_path, const SacProgress& progress) {
-  const bool sac = config.fusion.method == "sac";
-  if (sac && config.fusion.sac.correspondence == "dense") {
+  const FusionNeeds needs = MakeFusionMethod(config.fusion)->needs();
+  if (needs.consistency_graphs) {
     throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
   }
-  ValidateSacOptions(config.fusion.sac);
   const std::string tiles_dir = TilesDir(config);
   const double claim_timeout_s = config.tiling.claim_timeout_s;
   fs::create_directories(tiles_dir);
@@ -156,7 +153,7 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, co
     spdlog::info("other workers hold tile claims: leaving temporary files alone");
   } else {
     const size_t temps = RemoveTemporaryFiles(tiles_dir) + RemoveTemporaryFiles(config.output.dir) +
-                         RemoveTemporaryFiles(TileCacheDir(config), /*recursive=*/true);
+                         RemoveTemporaryFiles(SuperpixelCacheDir(config), /*recursive=*/true);
     if (temps > 0) spdlog::info("removed {} half-written files left by an interrupted run", temps);
     const size_t claims = RemoveStaleTileClaims(tiles_dir, claim_timeout_s);
     if (claims > 0) spdlog::info("removed {} stale tile claims left by killed workers", claims);
@@ -190,73 +187,33 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, co
     std::error_code ec;
     fs::remove(fused_las_path, ec);  // stale until the tiles are merged again
     const auto sp_start = std::chrono::steady_clock::now();
-    out.block.superpixels_computed = EnsureTiledSuperpixels(input, plan, config.fusion.sac, TileCacheDir(config),
-                                                            progress, nullptr, MethodUsesSuperpixels(config.fusion.method));
-    out.block.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sp_start).count();
-    if (sac) {
+    out.superpixels_computed = EnsureTiledSuperpixels(input, plan, config.fusion.sac, SuperpixelCacheDir(config),
+                                                      progress, nullptr, needs.superpixels);
+    out.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sp_start).count();
+    if (needs.superpixels) {
       spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",
-                   out.block.superpixels_computed, input.views().size() - out.block.superpixels_computed,
-                   out.block.superpixel_seconds, todo.size(), out.tiles_with_views);
+                   out.superpixels_computed, input.views().size() - out.superpixels_computed,
+                   out.superpixel_seconds, todo.size(), out.tiles_with_views);
     } else {
       spdlog::info("colour caches checked ({:.1f} s; no superpixels for {}); {} of {} tiles to compute",
-                   out.block.superpixel_seconds, config.fusion.method, todo.size(), out.tiles_with_views);
+                   out.superpixel_seconds, config.fusion.method, todo.size(), out.tiles_with_views);
     }
   }
-  SacStats& total = out.block.stats;
-  total.emitted_per_view.assign(input.views().size(), 0);
-  out.method_stats.emitted_per_view.assign(input.views().size(), 0);
-  out.method_stats.input_per_view.assign(input.views().size(), 0);
+  const size_t num_views = input.views().size();
+  out.stats.input_per_view.assign(num_views, 0);
+  out.stats.emitted_per_view.assign(num_views, 0);
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   MemoryAdmission admission(TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb)));
-  std::mutex mutex;  // guards out, total and progress across tile workers
-  // Claims and computes one tile; false when another live worker holds it.
-  const auto attempt = [&](const PlannedTile& tile, bool forced, size_t n, size_t of) {
-    const ClaimAttempt claim = TryClaimTile(tiles_dir, tile.id, claim_timeout_s);
-    if (!claim.claimed) {
-      spdlog::info("tile {}: claimed by {}, left to it", tile.id, claim.holder);
-      return false;
-    }
-    TileClaimGuard guard(tiles_dir, tile.id, claim.token);
-    if (claim.took_over) spdlog::warn("tile {}: took over a stale claim", tile.id);
-    if (!forced && VerifyTileDone(tiles_dir, tile.id, hash).done) {
-      spdlog::info("tile {}: done by another worker", tile.id);
-      return true;
-    }
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      ++out.tiles_computed;
-    }
-    try {
-      CheckTileFitsBudget(tile, config);
-      TileFusionResult r;
-      {
-        MemoryReservation reservation(admission, MethodTileBytes(tile, config.fusion));
-        r = ComputeTileFiles(config, input, plan, tile, las_options, tiles_dir, hash, &cluster_cache);
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      if (sac) {
-        AddSacStats(r.stats, &total);
-        for (size_t v = 0; v < tile.views.size(); ++v)
-          total.emitted_per_view[tile.views[v].view] += r.stats.emitted_per_view[v];
-      } else {
-        out.method_stats.Add(r.method_stats);
-        for (size_t v = 0; v < tile.views.size(); ++v) {
-          const uint32_t view = tile.views[v].view;
-          if (v < r.method_stats.emitted_per_view.size())
-            out.method_stats.emitted_per_view[view] += r.method_stats.emitted_per_view[v];
-          if (v < r.method_stats.input_per_view.size())
-            out.method_stats.input_per_view[view] += r.method_stats.input_per_view[v];
-        }
-      }
-      spdlog::info("tile {} ({}/{}): {} views, {} points in its core, {} left to neighbours", tile.id, n, of,
-                   tile.views.size(), r.points_in_core, r.points_outside_core);
-    } catch (const std::exception& e) {
-      spdlog::error("tile {}: failed: {}", tile.id, e.what());
-      WriteTileFailedMarker(tiles_dir, tile.id, e.what());
-      std::lock_guard<std::mutex> lock(mutex);
-      out.failed.emplace_back(tile.id, e.what());
-    }
-    return true;
+  std::mutex mutex;  // guards out and progress across tile workers
+  const TileJob job{config, input, plan, las_options, tiles_dir, hash};
+  // Works on one tile; false when another live worker holds it.
+  const auto attempt = [&](const PlannedTile& tile, bool forced) {
+    const TileWorkOutcome r = WorkOnTile(job, tile, forced, &admission, &cluster_cache);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (r.result == TileWork::kComputed || r.result == TileWork::kFailed) ++out.tiles_computed;
+    if (r.result == TileWork::kComputed) out.stats.Add(r.fused.stats, r.fused.view_ids, num_views);
+    if (r.result == TileWork::kFailed) out.failed.emplace_back(tile.id, r.detail);
+    return r.result != TileWork::kHeldElsewhere;
   };
   std::vector<const PlannedTile*> held;  // by other live workers
   const size_t workers = std::min<size_t>(static_cast<size_t>(EffectiveThreads(config)), todo.size());
@@ -268,7 +225,7 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, co
   const auto work = [&] {
     try {
       for (size_t i = next++; i < todo.size(); i = next++) {
-        const bool computed_or_done = attempt(*todo[i], rerun.count(todo[i]->id) > 0, i + 1, todo.size());
+        const bool computed_or_done = attempt(*todo[i], rerun.count(todo[i]->id) > 0);
         std::lock_guard<std::mutex> lock(mutex);
         if (!computed_or_done) held.push_back(todo[i]);
         ++finished;
@@ -301,11 +258,10 @@ TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, co
     for (const PlannedTile* t : held) {
       if (VerifyTileDone(tiles_dir, t->id, hash).done) continue;
       // Not done and no live claim: its worker died or failed, so it is computed here.
-      if (TileClaimIsLive(tiles_dir, t->id, claim_timeout_s) || !attempt(*t, false, 1, 1)) still.push_back(t);
+      if (TileClaimIsLive(tiles_dir, t->id, claim_timeout_s) || !attempt(*t, false)) still.push_back(t);
     }
     held.swap(still);
   }
-  if (total.valid_nodes > 0) total.mean_correspondences /= static_cast<double>(total.valid_nodes);
   if (!out.failed.empty()) return out;
 
   const auto merge_start = std::chrono::steady_clock::now();

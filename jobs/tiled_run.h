@@ -1,6 +1,6 @@
 #pragma once
-// A tiled SAC run with per-tile outputs and resume (tiling.tile_size_m > 0); every other fusion.method runs through
-// the same tiles (jobs/tiled_sac.h). State lives in DIR/tiles/:
+// A tiled run of any fusion.method with per-tile outputs and resume (tiling.tile_size_m > 0; each tile through
+// jobs/tile_fusion.h). State lives in DIR/tiles/:
 //   run_config.yaml  the result-affecting settings of the last run (config/result_settings.h), to name changes
 //   manifest.json    the tiles with views (grid order), the shared scale and offset, the settings hash
 //   <id>.las / <id>.done.json / <id>.failed.json   see jobs/tile_marker.h
@@ -20,19 +20,22 @@
 #include <vector>
 
 #include "config/job_config.h"
-#include "core/method_stats.h"
+#include "core/fusion_stats.h"
+#include "core/sac_fusion.h"
 #include "io/depth_block.h"
 #include "io/las_writer.h"
-#include "jobs/sac_block.h"
+#include "jobs/output_layout.h"
 #include "jobs/tile_plan.h"
-#include "jobs/tiled_sac.h"
+#include "jobs/tile_fusion.h"
 
 namespace sacfuse {
 
 struct TiledRunOutcome {
-  SacBlockResult block;  // SAC stats summed over the tiles computed by this invocation
-  MethodStats method_stats;  // other methods: their stats summed likewise (emitted and the counters include each
-                             // tile's halo; input counts the cores only; per-view vectors by view index)
+  // Summed over the tiles computed by this invocation: emitted and the counters include each tile's halo work;
+  // input counts the cores only; per-view vectors by the block's view index.
+  FusionStats stats;
+  size_t superpixels_computed = 0;  // superpixel files computed by the cache pass
+  double superpixel_seconds = 0.0;  // the superpixel (and colour cache) pass
   size_t tiles_with_views = 0;
   size_t tiles_computed = 0;                                // this invocation (including failed attempts)
   size_t tiles_skipped = 0;                                 // verified done, not recomputed
@@ -44,21 +47,18 @@ struct TiledRunOutcome {
   double merge_seconds = 0.0;
 };
 
-std::string TilesDir(const JobConfig& config);
 // The shared offset of a plan's tiles (see above).
 Eigen::Vector3d SharedTileOffset(const TilePlan& plan);
 // Ids of the plan's tiles with views, grid order.
 std::vector<std::string> TileIdsWithViews(const TilePlan& plan);
 
-// The superpixel cache folder of a config (fusion.superpixel_cache_dir or DIR/superpixels).
-std::string TileCacheDir(const JobConfig& config);
 // Writes tiles/run_config.yaml (warning which result-affecting keys changed) and tiles/manifest.json.
 // `las.offset` must be set.
 void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
                          size_t tiles_to_compute);
 // Computes one tile (the caller holds its claim) into <id>.las and <id>.done.json, after clearing its old state;
 // logs "computing tile <id>". Needs the superpixel caches of the tile's views. Throws whatever the tile throws.
-TileFusionResult ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+FusedViews ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                                   const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
                                   const std::string& hash, ClusterTableCache* cluster_cache = nullptr);
 
@@ -67,7 +67,7 @@ TileFusionResult ComputeTileFiles(const JobConfig& config, const DepthBlock& inp
 void CheckTileFitsBudget(const PlannedTile& tile, const JobConfig& config);
 
 // `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done.
-TiledRunOutcome RunTiledSac(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<std::string>& rerun_ids, LasWriterOptions las_options,
                             const std::string& fused_las_path, const SacProgress& progress = {});
 

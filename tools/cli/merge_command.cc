@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "config/job_config.h"
+#include "jobs/output_layout.h"
 #include "jobs/tile_queue.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
@@ -16,7 +17,7 @@ namespace {
 
 int MergeCommand(const std::string& config_path) {
   const JobConfig config = LoadJobConfig(config_path);
-  SetupLogging(config.log.level, (std::filesystem::path(config.output.dir) / "sacfuse.log").string());
+  SetupLogging(config.log.level, LogPath(config));
   const MergeJobOutcome out = MergeJob(config);
   if (!out.missing.empty()) {
     std::cout << out.missing.size() << " tiles are not done; nothing merged. Missing:";
@@ -33,7 +34,7 @@ int MergeCommand(const std::string& config_path) {
 
 void AddMergeCommand(CLI::App& app, int* exit_code) {
   auto config_path = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("merge", "Merge the done tiles of a tiled run into DIR/fused.las (exit 1 listing "
+  auto* cmd = app.add_subcommand("merge", "Merge the done tiles of a tiled run into DIR/fused.laz (or .las, output.format; exit 1 listing "
                                           "the missing tiles when some are not done)");
   cmd->add_option("CONFIG", *config_path, "YAML config of the run")->required();
   cmd->callback([config_path, exit_code] {

@@ -10,6 +10,7 @@
 #include "config/job_config.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "jobs/output_layout.h"
 #include "jobs/run_fusion.h"
 #include "jobs/report_writer.h"
 #include "tools/cli/cli_support.h"
@@ -61,7 +62,7 @@ std::vector<std::string> SplitIds(const std::string& text) {
 int ReportFailedTiles(const RunSummary& summary, const RunArgs& args) {
   std::string ids;
   std::cout << summary.failed_tiles.size() << " of " << summary.tiles_run
-            << " tiles failed; fused.las was not merged:\n";
+            << " tiles failed; the fused cloud was not merged:\n";
   for (const auto& [id, reason] : summary.failed_tiles) {
     std::cout << "  tile " << id << ": " << reason << "\n";
     ids += (ids.empty() ? "" : ",") + id;
@@ -81,7 +82,7 @@ int RunCommand(const RunArgs& args) {
     if (args.config_path.empty()) throw ConfigError("sacfuse run: a CONFIG file is required (or --print-defaults)");
     JobConfig config = LoadJobConfig(args.config_path);
     if (args.threads >= 0) config.resources.threads = args.threads;
-    SetupLogging(config.log.level, (std::filesystem::path(config.output.dir) / "sacfuse.log").string());
+    SetupLogging(config.log.level, LogPath(config));
     spdlog::info("effective configuration ({}):\n{}", args.config_path, DumpJobConfig(config, false));
     ProgressPrinter progress;
     const RunSummary summary = RunFusionJob(config, std::ref(progress), SplitIds(args.tiles));
@@ -107,7 +108,7 @@ int RunCommand(const RunArgs& args) {
 
 void AddRunCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<RunArgs>();
-  auto* cmd = app.add_subcommand("run", "Fuse the depth maps named by a YAML config into DIR/fused.las");
+  auto* cmd = app.add_subcommand("run", "Fuse the depth maps named by a YAML config into DIR/fused.laz (or fused.las: output.format)");
   cmd->add_option("CONFIG", args->config_path, "YAML config (see --print-defaults)");
   cmd->add_flag("--print-defaults", args->print_defaults, "Print a complete commented config with every default");
   cmd->add_option("--threads", args->threads, "Override resources.threads (0 = all cores)");

@@ -14,6 +14,7 @@
 #include "config/job_config.h"
 #include "config/result_settings.h"
 #include "core/error.h"
+#include "jobs/output_layout.h"
 #include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
 #include "jobs/tiled_run.h"
@@ -74,7 +75,7 @@ int StatusCommand(const StatusArgs& args) {
     }
     std::cout << ")\n";
   }
-  const bool merged = std::filesystem::exists(std::filesystem::path(config.output.dir) / "fused.las");
+  const bool merged = std::filesystem::exists(FusedLasPath(config));
   std::cout << "fused.las: " << (merged && done.size() == total ? "merged" : "not merged") << "\n";
   return kExitOk;
 }

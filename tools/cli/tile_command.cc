@@ -33,7 +33,7 @@ int TileCommand(const TileArgs& args) {
       std::cout << "tile " << args.id << ": claimed by " << out.detail << ", skipped\n";
       return kExitOk;
     case TileWork::kComputed:
-      std::cout << "tile " << args.id << ": computed, " << out.points << " points\n";
+      std::cout << "tile " << args.id << ": computed, " << out.fused.points_written << " points\n";
       return kExitOk;
     case TileWork::kFailed:
       std::cout << "tile " << args.id << ": failed: " << out.detail << "\n";

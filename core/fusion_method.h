@@ -1,0 +1,50 @@
+#pragma once
+// The one interface every fusion method implements (SAC and the comparison methods): what it needs of the views
+// besides depth and colour, and Fuse(views, scope, sink) -> FusionStats. The job (jobs/fuse_views.h) loads the
+// views — a whole block or a tile's windows — and calls Fuse the same way for every method.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "core/fusion_stats.h"
+#include "core/method_views.h"
+#include "core/point.h"
+#include "core/sac_view.h"
+
+namespace sacfuse {
+
+// What a method reads besides each view's depth and colours.
+struct FusionNeeds {
+  bool superpixels = false;         // SacView::superpixels (SAC's nodes)
+  bool consistency_graphs = false;  // SacView::consistency (SAC with fusion.correspondence: dense)
+  bool block_geometry = false;      // FusionScope::plan and gsd_m (the comparison methods)
+  // true: the method applies FusionScope::owns to each pixel's own point itself (SAC, whose averaging moves a
+  // point along its ray differently in each tile); false: the job keeps the emitted points the scope owns.
+  bool owns_pixels = false;
+};
+
+// Which pixels (or points) of the views a run emits, judged on a world point: a tile's core. Empty = all.
+using PixelOwner = std::function<bool(const Eigen::Vector3d& point_in_world)>;
+
+// Where one run sits in the block.
+struct FusionScope {
+  const ViewPlan* plan = nullptr;           // neighbours and order, positions in the views (needs.block_geometry)
+  double gsd_m = 0.0;                       // the block's GSD, metres (needs.block_geometry)
+  const FootprintBox* region_xy = nullptr;  // the XY box the views were cut to (a tile's halo); null = unbounded
+  PixelOwner owns;                          // empty = every pixel
+};
+
+class FusionMethod {
+ public:
+  virtual ~FusionMethod() = default;
+  virtual std::string name() const = 0;
+  virtual FusionNeeds needs() const = 0;
+  // Streams the fused points of `views` to `sink`. input_per_view / input_pixels are filled by the caller
+  // (jobs/fuse_views.h), the same way for every method.
+  virtual FusionStats Fuse(const std::vector<SacView>& views, const FusionScope& scope, PointSink& sink) const = 0;
+};
+
+}  // namespace sacfuse

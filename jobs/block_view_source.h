@@ -1,0 +1,27 @@
+#pragma once
+// The views of a whole block (an untiled run): every view's whole depth map, its colours resampled to the depth
+// grid, its superpixels (loaded from the cache folder or computed and stored there) and, when asked for, its
+// dense-matching consistency graph.
+#include <string>
+
+#include "core/sac_fusion.h"
+#include "core/sac_options.h"
+#include "jobs/view_source.h"
+
+namespace sacfuse {
+
+class BlockViewSource : public ViewSource {
+ public:
+  // `superpixels`: the options the superpixels are computed with (and their cache files keyed by).
+  BlockViewSource(const DepthBlock& input, const SuperpixelOptions& superpixels, std::string cache_dir,
+                  SacProgress progress = {});
+  std::unique_ptr<LoadedViews> Load(const FusionNeeds& needs) const override;
+
+ private:
+  const DepthBlock& input_;
+  SuperpixelOptions superpixel_options_;
+  std::string cache_dir_;
+  SacProgress progress_;
+};
+
+}  // namespace sacfuse

@@ -1,0 +1,54 @@
+#include "jobs/fuse_views.h"
+
+#include "core/error.h"
+#include "jobs/point_sinks.h"
+
+namespace sacfuse {
+namespace {
+
+// Valid depth pixels per view whose own point the scope owns (all of them without an owner).
+void CountInput(const std::vector<SacView>& views, const PixelOwner& owns, FusionStats* stats) {
+  stats->input_pixels = 0;
+  stats->input_per_view.assign(views.size(), 0);
+  for (size_t i = 0; i < views.size(); ++i) {
+    const DepthMap& d = *views[i].depth;
+    uint64_t n = 0;
+    for (int row = 0; row < d.height; ++row) {
+      for (int col = 0; col < d.width; ++col) {
+        const float z = d.at(row, col);
+        if (IsValidDepth(z) && (!owns || owns(PixelPoint(views[i], row, col, z)))) ++n;
+      }
+    }
+    stats->input_per_view[i] = n;
+    stats->input_pixels += n;
+  }
+}
+
+}  // namespace
+
+FusedViews FuseViews(const FusionMethod& method, const ViewSource& source, const MethodGeometry* geometry,
+                     FusionScope scope, PointSink& sink) {
+  const FusionNeeds needs = method.needs();
+  const std::unique_ptr<LoadedViews> loaded = source.Load(needs);
+  FusedViews out;
+  out.view_ids = loaded->view_ids;
+  out.superpixels_computed = loaded->superpixels_computed;
+  out.load_seconds = loaded->load_seconds;
+  ViewPlan plan;
+  if (needs.block_geometry) {
+    if (geometry == nullptr) throw Error("fusion method " + method.name() + " needs the block geometry");
+    plan = SubsetViewPlan(geometry->plan, loaded->view_ids);
+    scope.plan = &plan;
+    scope.gsd_m = geometry->gsd_m;
+  }
+  CountingSink written(sink);
+  OwnedPointsSink owned(scope.owns, written);
+  const bool filter_here = scope.owns && !needs.owns_pixels;
+  out.stats = method.Fuse(loaded->views, scope, filter_here ? static_cast<PointSink&>(owned) : written);
+  CountInput(loaded->views, scope.owns, &out.stats);
+  out.points_written = written.count();
+  out.points_not_owned = needs.owns_pixels ? out.stats.counter("pixels_not_owned") : owned.rejected();
+  return out;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,27 @@
+#include "jobs/point_sinks.h"
+
+namespace sacfuse {
+
+void CountingSink::Write(const FusedPoint* points, size_t count) {
+  for (size_t i = 0; i < count; ++i) {
+    if (points[i].view_index >= per_view_.size()) per_view_.resize(points[i].view_index + 1, 0);
+    ++per_view_[points[i].view_index];
+  }
+  count_ += count;
+  next_.Write(points, count);
+}
+
+void OwnedPointsSink::Write(const FusedPoint* points, size_t count) {
+  if (!owns_) {
+    next_.Write(points, count);
+    return;
+  }
+  kept_.clear();
+  for (size_t i = 0; i < count; ++i) {
+    if (owns_(points[i].point_in_world)) kept_.push_back(points[i]);
+  }
+  rejected_ += count - kept_.size();
+  if (!kept_.empty()) next_.Write(kept_.data(), kept_.size());
+}
+
+}  // namespace sacfuse

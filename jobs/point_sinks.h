@@ -1,0 +1,39 @@
+#pragma once
+// Point sinks that sit between a fusion method and the writer: counting, and keeping a tile's own points.
+#include <cstdint>
+#include <vector>
+
+#include "core/fusion_method.h"
+#include "core/point.h"
+
+namespace sacfuse {
+
+// Forwards every point, counting them in total and per source view (FusedPoint::view_index).
+class CountingSink : public PointSink {
+ public:
+  explicit CountingSink(PointSink& next) : next_(next) {}
+  void Write(const FusedPoint* points, size_t count) override;
+  uint64_t count() const { return count_; }
+  uint64_t count(uint32_t view_index) const { return view_index < per_view_.size() ? per_view_[view_index] : 0; }
+
+ private:
+  PointSink& next_;
+  uint64_t count_ = 0;
+  std::vector<uint64_t> per_view_;
+};
+
+// Forwards the points `owns` accepts (all when it is empty) and counts the rest.
+class OwnedPointsSink : public PointSink {
+ public:
+  OwnedPointsSink(PixelOwner owns, PointSink& next) : owns_(std::move(owns)), next_(next) {}
+  void Write(const FusedPoint* points, size_t count) override;
+  uint64_t rejected() const { return rejected_; }
+
+ private:
+  PixelOwner owns_;
+  PointSink& next_;
+  std::vector<FusedPoint> kept_;
+  uint64_t rejected_ = 0;
+};
+
+}  // namespace sacfuse

@@ -1,0 +1,81 @@
+#include "jobs/tile_fusion.h"
+
+#include <vector>
+
+#include "core/colour_resample.h"
+#include "io/colour_raster_io.h"
+#include "jobs/fusion_methods.h"
+#include "jobs/method_geometry.h"
+#include "jobs/superpixel_cache.h"
+#include "jobs/tile_view_source.h"
+
+namespace sacfuse {
+namespace {
+
+// Computes and caches a view's superpixels (when `with_superpixels`) and its colours on the depth grid unless
+// those caches exist (then nothing is read).
+bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRasterSize& size,
+                      const SuperpixelOptions& options, const std::string& cache_dir, bool with_superpixels) {
+  const bool spx_ok =
+      !with_superpixels || SuperpixelCacheIsCurrent(cache_dir, view.name, size.width, size.height, options);
+  const bool rgb_ok = ColourCacheIsCurrent(cache_dir, view.name, size.width, size.height);
+  if (spx_ok && rgb_ok) return false;
+  const RgbImage image = input.ReadImage(view);
+  if (!with_superpixels) {  // colours only: no depth needed
+    if (!image.empty()) {
+      WriteColourRaster(ColourCachePath(cache_dir, view.name), ResampleColourToDepthGrid(image, size.width, size.height));
+    }
+    return false;
+  }
+  const DepthMap depth = input.ReadDepthMap(view);
+  bool computed = false;
+  if (!spx_ok) LoadOrComputeSuperpixels(cache_dir, view.name, image, depth, options, &computed);
+  if (!rgb_ok && !image.empty()) {
+    WriteColourRaster(ColourCachePath(cache_dir, view.name), ResampleColourToDepthGrid(image, size.width, size.height));
+  }
+  return computed;
+}
+
+}  // namespace
+
+size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
+                              const std::string& superpixel_cache_dir, const SacProgress& progress,
+                              const PlannedTile* only_tile, bool with_superpixels) {
+  const auto& views = input.views();
+  std::vector<size_t> todo;
+  if (only_tile == nullptr) {
+    for (size_t v = 0; v < views.size(); ++v) todo.push_back(v);
+  } else {
+    for (const TileViewWindow& tw : only_tile->views) todo.push_back(tw.view);
+  }
+  size_t computed = 0;
+  for (size_t i = 0; i < todo.size(); ++i) {
+    const size_t v = todo[i];
+    computed += EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir,
+                                 with_superpixels) ? 1 : 0;
+    if (progress) progress("superpixels", i + 1, todo.size());
+  }
+  return computed;
+}
+
+FusedViews FuseTile(const DepthBlock& input, const TilePlan& plan, const PlannedTile& tile,
+                    const FusionOptions& fusion, const std::string& superpixel_cache_dir, PointSink& sink,
+                    ClusterTableCache* cluster_cache) {
+  const std::unique_ptr<FusionMethod> method = MakeFusionMethod(fusion);
+  MethodGeometry geometry;
+  if (method->needs().block_geometry) {
+    geometry = BlockMethodGeometry(input, plan.depth_sizes, plan.z_min_m, plan.z_max_m, NeighborOptionsOf(fusion.sac));
+  }
+  FootprintBox halo;
+  halo.Extend(tile.halo.min);
+  halo.Extend(tile.halo.max);
+  FusionScope scope;
+  scope.region_xy = &halo;
+  const TileGrid& grid = plan.grid;
+  const TileIndex index = tile.index;
+  scope.owns = [&grid, index](const Eigen::Vector3d& p) { return grid.TileOf(p.x(), p.y()) == index; };
+  const TileViewSource source(input, plan, tile, superpixel_cache_dir, cluster_cache);
+  return FuseViews(*method, source, &geometry, std::move(scope), sink);
+}
+
+}  // namespace sacfuse
