@@ -110,6 +110,12 @@ std::string LazVlr::Unsupported(int pdrf, size_t record_length) const {
   size_t expected_index = 0;
   const LazVlr expected = ForFormat(pdrf, 0);
   for (const LazItem& item : items) {
+    if (item.type == kItemWavePacket13 || item.type == kItemWavePacket14) {
+      return "waveform packets (item " + ItemName(item.type) + " version " + std::to_string(item.version) + ", " +
+             version + ") are not supported";
+    }
+  }
+  for (const LazItem& item : items) {
     const std::string name = ItemName(item.type) + " version " + std::to_string(item.version);
     if (item.version != want_version) {
       return "item " + name + " (" + version + ", compressor " + std::to_string(compressor) +
