@@ -99,7 +99,7 @@ struct ItemCodecs {
     std::array<bool, kPoint14Layers> p14;
     for (size_t i = 0; i < kPoint14Layers; ++i) p14[i] = present[i];
     point14->Reset(first, p14);
-    const uint32_t context = point14->context();
+    const uint32_t context = point14->item_context();
     size_t layer = kPoint14Layers;
     bool flags[2] = {false, false};
     if (rgb14) {
@@ -117,7 +117,7 @@ struct ItemCodecs {
   template <class Coder>
   void CodeLayered(Coder* coders, uint8_t* record) {
     point14->Code(coders, record);
-    const uint32_t context = point14->context();
+    const uint32_t context = point14->item_context();
     Coder* next = coders + kPoint14Layers;
     if (rgb14) {
       rgb14->Code(next, record + Point14Codec::kSize, context);

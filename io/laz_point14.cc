@@ -127,6 +127,7 @@ void Point14Codec::Reset(const uint8_t* first, const std::array<bool, kPoint14La
   for (auto& c : contexts_) c->unused = true;
   const Point14Fields f = Point14Fields::FromRecord(first);
   current_ = f.scanner_channel;
+  item_context_ = current_;
   InitContext(current_, f);
   present_ = present;
   changed_.fill(false);
@@ -201,6 +202,7 @@ void Point14Codec::Code(Coder* coders, uint8_t* record) {
   }
   Coder& xy = coders[kLayerReturnsXY];
   changed = xy.Symbol(c->changed_values[lpr], changed);
+  item_context_ = 0;
   if (changed & kChannelChanged) {
     uint32_t step = 0;  // channel = current + 1 + step (mod 4)
     if constexpr (kEnc) step = (in.scanner_channel + 4 - current_) % 4 - 1;
@@ -208,6 +210,7 @@ void Point14Codec::Code(Coder* coders, uint8_t* record) {
     const uint32_t channel = (current_ + step + 1) % 4;
     if (contexts_[channel]->unused) InitContext(channel, c->last);
     current_ = channel;
+    item_context_ = channel;
     c = contexts_[channel].get();
     c->last.scanner_channel = channel;
   }

@@ -50,8 +50,10 @@ class Point14Codec {
   // Encoder: compresses *record. Decoder: writes the next record to *record. coders[layer]: kPoint14Layers coders.
   template <class Coder>
   void Code(Coder* coders, uint8_t* record);
-  // Scanner channel context of the last point coded (the following items use it).
-  uint32_t context() const { return current_; }
+  // Context the following items (RGB, NIR, extra bytes) use for the point just coded. Quirk of the format kept
+  // for compatibility: it is the scanner channel only at the chunk's first point and at points where the channel
+  // changed, and 0 otherwise (the reference implementations reset it to 0 before every point).
+  uint32_t item_context() const { return item_context_; }
   // Encoder: whether a layer's value ever changed in this chunk (unchanged layers are not stored).
   bool changed(int layer) const { return changed_[layer]; }
 
@@ -63,6 +65,7 @@ class Point14Codec {
 
   std::array<std::unique_ptr<Context>, 4> contexts_;
   uint32_t current_ = 0;
+  uint32_t item_context_ = 0;
   std::array<bool, kPoint14Layers> present_{};
   std::array<bool, kPoint14Layers> changed_{};
 };
