@@ -1,5 +1,7 @@
 #include "io/laz_arithmetic.h"
 
+#include <algorithm>
+
 namespace sacfuse::laz {
 namespace {
 
@@ -150,6 +152,7 @@ uint32_t Decoder::Bit(BitModel& model, uint32_t) {
 }
 
 uint32_t Decoder::Symbol(SymbolModel& model, uint32_t) {
+  if (!model.lookup().empty()) return LookupSymbol(model);
   // Bisection for the last symbol whose interval start is <= value.
   uint32_t upper_length = length_;  // end of the interval of the last symbol
   length_ >>= SymbolModel::kDistributionBits;
@@ -169,6 +172,33 @@ uint32_t Decoder::Symbol(SymbolModel& model, uint32_t) {
   } while ((k = (symbol + n) >> 1) != symbol);
   value_ -= low;
   length_ = upper_length - low;
+  if (length_ < kMinLength) Renormalise();
+  model.Count(symbol);
+  return symbol;
+}
+
+uint32_t Decoder::LookupSymbol(SymbolModel& model) {
+  // Same result as the bisection over all symbols, started from the model's lookup table.
+  const uint32_t full_length = length_;
+  length_ >>= SymbolModel::kDistributionBits;
+  const uint32_t target = value_ / length_;
+  const std::vector<uint32_t>& lookup = model.lookup();
+  // Corrupt data can put the value beyond the interval: clamp into the table.
+  const uint32_t slot = std::min<uint32_t>(target >> model.lookup_shift(), static_cast<uint32_t>(lookup.size()) - 2);
+  uint32_t symbol = lookup[slot];
+  uint32_t n = lookup[slot + 1] + 1;
+  while (n > symbol + 1) {
+    const uint32_t k = (symbol + n) >> 1;
+    if (model.cumulative(k) > target) {
+      n = k;
+    } else {
+      symbol = k;
+    }
+  }
+  const uint32_t low = model.cumulative(symbol) * length_;
+  const uint32_t high = symbol + 1 == model.symbols() ? full_length : model.cumulative(symbol + 1) * length_;
+  value_ -= low;
+  length_ = high - low;
   if (length_ < kMinLength) Renormalise();
   model.Count(symbol);
   return symbol;

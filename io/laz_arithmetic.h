@@ -65,6 +65,7 @@ class Decoder {
 
  private:
   uint32_t ShiftOut(uint32_t bits);  // bits <= 16
+  uint32_t LookupSymbol(SymbolModel& model);
   uint8_t NextByte();
   void Renormalise();
 

@@ -36,6 +36,12 @@ SymbolModel::SymbolModel(uint32_t symbols) {
   if (symbols < 2 || symbols > 2048) throw std::invalid_argument("LAZ symbol model needs 2..2048 symbols");
   counts_.resize(symbols);
   cumulative_.resize(symbols);
+  if (symbols > 16) {
+    uint32_t bits = 3;
+    while (symbols > (1u << (bits + 2))) ++bits;
+    lookup_.resize((size_t{1} << bits) + 2);
+    lookup_shift_ = kDistributionBits - bits;
+  }
   Reset();
 }
 
@@ -63,6 +69,17 @@ void SymbolModel::Update() {
   for (uint32_t k = 0; k < n; ++k) {
     cumulative_[k] = (scale * sum) >> (31 - kDistributionBits);
     sum += counts_[k];
+  }
+  if (!lookup_.empty()) {
+    // lookup_[i]: the last symbol whose cumulative value is below i << shift.
+    const uint32_t slots = static_cast<uint32_t>(lookup_.size()) - 2;
+    uint32_t slot = 0;
+    for (uint32_t k = 0; k < n; ++k) {
+      const uint32_t reach = cumulative_[k] >> lookup_shift_;
+      while (slot < reach) lookup_[++slot] = k - 1;
+    }
+    lookup_[0] = 0;
+    while (slot <= slots) lookup_[++slot] = n - 1;
   }
   update_cycle_ = (5 * update_cycle_) >> 2;
   const uint32_t max_cycle = (n + 6) << 3;

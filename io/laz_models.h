@@ -48,11 +48,17 @@ class SymbolModel {
   uint32_t symbols() const { return static_cast<uint32_t>(counts_.size()); }
   // Cumulative probability of the symbols before `symbol` (symbol < symbols()).
   uint32_t cumulative(uint32_t symbol) const { return cumulative_[symbol]; }
+  // Decoding speed-up for alphabets of more than 16 symbols (else empty): for a cumulative value v,
+  // lookup()[v >> lookup_shift()] is a symbol at or before v's and lookup()[that index + 1] + 1 one after it.
+  const std::vector<uint32_t>& lookup() const { return lookup_; }
+  uint32_t lookup_shift() const { return lookup_shift_; }
 
  private:
   void Update();
   std::vector<uint32_t> counts_;
   std::vector<uint32_t> cumulative_;
+  std::vector<uint32_t> lookup_;
+  uint32_t lookup_shift_ = 0;
   uint32_t total_count_ = 0;
   uint32_t update_cycle_ = 0;
   uint32_t until_update_ = 0;
