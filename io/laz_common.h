@@ -36,6 +36,17 @@ inline uint32_t ReturnLevel(uint32_t n, uint32_t r) {
   return d < 7 ? d : 7;
 }
 
+// Context of the Y and Z corrector models from the X (and Y) corrector length classes k: even classes below a cap.
+inline uint32_t LengthContext(uint32_t k, uint32_t cap) { return k < cap ? (k & ~1u) : cap; }
+
+// Coordinate differences and sums modulo 2^32 (the integer compressor codes them wrapped).
+inline int32_t WrappingDiff(int32_t a, int32_t b) {
+  return static_cast<int32_t>(static_cast<uint32_t>(a) - static_cast<uint32_t>(b));
+}
+inline int32_t WrappingSum(int32_t a, int32_t b) {
+  return static_cast<int32_t>(static_cast<uint32_t>(a) + static_cast<uint32_t>(b));
+}
+
 // Byte difference and sum modulo 256 (the "fold" of the format).
 inline uint8_t ByteDiff(uint32_t value, uint32_t last) { return static_cast<uint8_t>(value - last); }
 inline uint8_t ByteSum(uint32_t symbol, uint32_t last) { return static_cast<uint8_t>(symbol + last); }

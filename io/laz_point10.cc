@@ -17,9 +17,6 @@ constexpr uint32_t kScanAngleChanged = 4;
 constexpr uint32_t kUserDataChanged = 2;
 constexpr uint32_t kPointSourceChanged = 1;
 
-// Context of the Y and Z corrector models from the X (and Y) corrector length classes.
-uint32_t LengthContext(uint32_t k, uint32_t cap) { return k < cap ? (k & ~1u) : cap; }
-
 }  // namespace
 
 Point10Codec::Point10Codec() { Reset(last_.data()); }
@@ -92,18 +89,12 @@ void Point10Codec::Code(Coder& coder, uint8_t* item) {
   }
 
   const uint32_t single = n == 1 ? 1 : 0;
-  const int32_t dx = dx_.Code(coder, median_x_[m].Get(),
-                              static_cast<int32_t>(static_cast<uint32_t>(lf::GetI32(item)) -
-                                                   static_cast<uint32_t>(lf::GetI32(last))),
-                              single);
-  lf::PutI32(last, static_cast<int32_t>(static_cast<uint32_t>(lf::GetI32(last)) + static_cast<uint32_t>(dx)));
+  const int32_t dx = dx_.Code(coder, median_x_[m].Get(), WrappingDiff(lf::GetI32(item), lf::GetI32(last)), single);
+  lf::PutI32(last, WrappingSum(lf::GetI32(last), dx));
   median_x_[m].Add(dx);
-  const int32_t dy = dy_.Code(coder, median_y_[m].Get(),
-                              static_cast<int32_t>(static_cast<uint32_t>(lf::GetI32(item + 4)) -
-                                                   static_cast<uint32_t>(lf::GetI32(last + 4))),
+  const int32_t dy = dy_.Code(coder, median_y_[m].Get(), WrappingDiff(lf::GetI32(item + 4), lf::GetI32(last + 4)),
                               single + LengthContext(dx_.k(), 20));
-  lf::PutI32(last + 4,
-             static_cast<int32_t>(static_cast<uint32_t>(lf::GetI32(last + 4)) + static_cast<uint32_t>(dy)));
+  lf::PutI32(last + 4, WrappingSum(lf::GetI32(last + 4), dy));
   median_y_[m].Add(dy);
   const uint32_t k_xy = (dx_.k() + dy_.k()) / 2;
   last_z_[l] = z_.Code(coder, last_z_[l], lf::GetI32(item + 8), single + LengthContext(k_xy, 18));

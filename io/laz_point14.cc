@@ -15,15 +15,6 @@ constexpr uint32_t kScanAngleChanged = 8;
 constexpr uint32_t kNumberOfReturnsChanged = 4;
 constexpr uint32_t kReturnNumberMask = 3;  // 0 same, 1 plus one, 2 minus one, 3 coded
 
-uint32_t LengthContext(uint32_t k, uint32_t cap) { return k < cap ? (k & ~1u) : cap; }
-
-int32_t WrappingDiff(int32_t a, int32_t b) {
-  return static_cast<int32_t>(static_cast<uint32_t>(a) - static_cast<uint32_t>(b));
-}
-int32_t WrappingSum(int32_t a, int32_t b) {
-  return static_cast<int32_t>(static_cast<uint32_t>(a) + static_cast<uint32_t>(b));
-}
-
 }  // namespace
 
 Point14Fields Point14Fields::FromRecord(const uint8_t* p) {
