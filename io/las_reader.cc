@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/las_format.h"
+#include "io/laz_point_reader.h"
 
 namespace sacfuse {
 namespace lf = las_format;
@@ -17,16 +18,6 @@ namespace {
 
 constexpr size_t kReadBlockRecords = 65536;              // records per fread
 constexpr uint64_t kMaxEvlrPayload = uint64_t{64} << 20;  // larger EVLRs (waveform data) are not loaded
-
-const char* kLazMessage =
-    "compressed LAZ is not supported; decompress it first (laszip -i in.laz -o out.las, or "
-    "pdal translate in.laz out.las)";
-
-bool HasLazExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext == ".laz";
-}
 
 std::string VlrName(const LasVlr& vlr) { return vlr.user_id + "/" + std::to_string(vlr.record_id); }
 
@@ -49,6 +40,10 @@ struct LasReader::Impl {
   LasHeader header;
   uint64_t next = 0;  // index of the next point to read
   std::vector<uint8_t> block;
+  // LAZ: set when the point format has LASzip's compression bit or a "laszip encoded" VLR is present.
+  bool compressed = false;
+  std::vector<uint8_t> laszip_vlr;
+  std::unique_ptr<LazPointReader> laz;
 
   [[noreturn]] void Fail(const std::string& message) const { throw InputError(path, message); }
 
@@ -66,12 +61,16 @@ struct LasReader::Impl {
 };
 
 void LasReader::Impl::Open() {
-  if (HasLazExtension(path)) Fail(kLazMessage);
   file = std::fopen(path.c_str(), "rb");
   if (file == nullptr) Fail(std::string("cannot open: ") + std::strerror(errno));
   if (fseeko(file, 0, SEEK_END) != 0) Fail("cannot seek");
   file_size = static_cast<uint64_t>(ftello(file));
   ParseHeader();
+  if (compressed) {
+    if (laszip_vlr.empty()) Fail("point format has the LAZ compression bit set but there is no laszip VLR");
+    laz = std::make_unique<LazPointReader>(path, file, file_size, header, laszip_vlr);
+    return;
+  }
   if (fseeko(file, static_cast<off_t>(header.offset_to_point_data), SEEK_SET) != 0) Fail("cannot seek");
 }
 
@@ -114,8 +113,8 @@ void LasReader::Impl::ParseHeader() {
     hd.min[a] = lf::GetF64(&h[lf::kOffBounds + 16 * a + 8]);
   }
   // LASzip marks compressed files by setting bit 7 (and historically bit 6) of the point format.
-  if ((raw_format & 0xC0) != 0) Fail(kLazMessage);
-  hd.point_format = raw_format;
+  compressed = (raw_format & 0xC0) != 0;
+  hd.point_format = raw_format & 0x3F;
 
   if (hd.offset_to_point_data < hd.header_size) {
     Fail("offset to point data " + std::to_string(hd.offset_to_point_data) + " is smaller than the header size " +
@@ -126,6 +125,7 @@ void LasReader::Impl::ParseHeader() {
          std::to_string(file_size) + " bytes)");
   }
   ReadVlrs(num_vlrs);
+  compressed = compressed || !laszip_vlr.empty();
 
   const size_t base = lf::BaseRecordSize(hd.point_format);
   if (base == 0) Fail("unknown point data record format " + std::to_string(hd.point_format));
@@ -149,7 +149,7 @@ void LasReader::Impl::ParseHeader() {
   }
   const uint64_t available = file_size - hd.offset_to_point_data;
   const uint64_t holds = available / hd.point_record_length;
-  if (hd.point_count > holds) {
+  if (!compressed && hd.point_count > holds) {
     Fail("truncated: the header says " + std::to_string(hd.point_count) + " points of " +
          std::to_string(hd.point_record_length) + " bytes from offset " + std::to_string(hd.offset_to_point_data) +
          ", but the file (" + std::to_string(file_size) + " bytes) can hold only " + std::to_string(holds));
@@ -157,7 +157,9 @@ void LasReader::Impl::ParseHeader() {
   if (has_14_fields) {
     const uint64_t evlr_start = lf::GetU64(&h[lf::kOffEvlrStart]);
     const uint32_t num_evlrs = lf::GetU32(&h[lf::kOffEvlrCount]);
-    const uint64_t point_end = hd.offset_to_point_data + hd.point_count * hd.point_record_length;
+    // LAZ: the EVLRs follow the chunk table, somewhere after the (compressed) points.
+    const uint64_t point_end =
+        compressed ? hd.offset_to_point_data : hd.offset_to_point_data + hd.point_count * hd.point_record_length;
     if (evlr_start != 0 && num_evlrs != 0) ReadEvlrs(evlr_start, num_evlrs, point_end);
   }
 }
@@ -187,11 +189,15 @@ void LasReader::Impl::ReadVlrs(uint32_t num_vlrs) {
       Fail("VLR " + std::to_string(i + 1) + " of " + std::to_string(num_vlrs) + " (" + VlrName(vlr) + ", " +
            std::to_string(size) + " bytes) flows into point data at offset " + std::to_string(end));
     }
-    if (vlr.user_id == lf::kLaszipUserId && vlr.record_id == lf::kLaszipRecordId) Fail(kLazMessage);
     const uint8_t* payload = &region[pos + lf::kVlrHeaderSize];
+    pos += lf::kVlrHeaderSize + size;
+    if (vlr.user_id == lf::kLaszipUserId && vlr.record_id == lf::kLaszipRecordId) {
+      // How the points are compressed: kept by the reader, not listed among the header's VLRs.
+      laszip_vlr.assign(payload, payload + size);
+      continue;
+    }
     vlr.data.assign(payload, payload + size);
     header.vlrs.push_back(std::move(vlr));
-    pos += lf::kVlrHeaderSize + size;
   }
 }
 
@@ -251,7 +257,9 @@ size_t LasReader::Read(std::vector<LasPoint>* out, size_t max_count) {
   while (done < n) {
     const size_t k = std::min(kReadBlockRecords, n - done);
     r.block.resize(k * length);
-    if (std::fread(r.block.data(), length, k, r.file) != k) {
+    if (r.laz) {
+      r.laz->Read(r.block.data(), k);
+    } else if (std::fread(r.block.data(), length, k, r.file) != k) {
       r.Fail("cannot read points " + std::to_string(r.next) + ".." + std::to_string(r.next + k) +
              " (file changed while reading?)");
     }
@@ -266,8 +274,12 @@ size_t LasReader::Read(std::vector<LasPoint>* out, size_t max_count) {
 
 void LasReader::Rewind() {
   Impl& r = *impl_;
-  if (fseeko(r.file, static_cast<off_t>(r.header.offset_to_point_data), SEEK_SET) != 0) r.Fail("cannot seek");
   r.next = 0;
+  if (r.laz) {
+    r.laz->Rewind();
+    return;
+  }
+  if (fseeko(r.file, static_cast<off_t>(r.header.offset_to_point_data), SEEK_SET) != 0) r.Fail("cannot seek");
 }
 
 std::vector<LasPoint> ReadAllLasPoints(const std::string& path, LasHeader* header) {

@@ -1,5 +1,8 @@
 #pragma once
-// Streaming reader for uncompressed LAS 1.0-1.4, point formats 0-10 (LAZ is rejected with a clear message).
+// Streaming reader for LAS 1.0-1.4, point formats 0-10, uncompressed or LAZ (LASzip-compressed: point formats 0-3
+// point-wise and 6-8 layered, see io/laz_point_reader.h; detected by the compression bit of the point format or the
+// "laszip encoded" VLR, not by the file name). The laszip VLR is not listed in header().vlrs, and
+// header().point_format is the format without the compression bits.
 // Validates the header against the file (signature, header size, offsets, record length vs format,
 // offset + count x length <= file size) and throws sacfuse::InputError naming the file on any inconsistency.
 // Tolerated, as laspy/LASlib do: extra header bytes, extra bytes per record (skipped), an overstated VLR count

@@ -163,11 +163,13 @@ TEST(LasReaderTest, RejectsCorruptHeaders) {
                    "inside the point data");
 }
 
-TEST(LasReaderTest, RejectsLaz) {
+TEST(LasReaderTest, DetectsLazByContentNotByName) {
   TempDir dir;
   const std::string v12 = MakeValidFile(dir, "v12.las", 2, 10);
-  ExpectInputError(Corrupt(dir, v12, "bit7.las", [](auto* b) { (*b)[104] |= 0x80; }), "LAZ");
-  ExpectInputError(Corrupt(dir, v12, "named.laz", [](auto*) {}), "LAZ");
+  ExpectInputError(Corrupt(dir, v12, "bit7.las", [](auto* b) { (*b)[104] |= 0x80; }),
+                   "LAZ compression bit set but there is no laszip VLR");
+  // An uncompressed file named .laz is read as what it is.
+  EXPECT_EQ(ReadAllLasPoints(Corrupt(dir, v12, "named.laz", [](auto*) {})).size(), 10u);
   const std::string v14 = MakeValidFile(dir, "v14.las", 4, 10, 16);
   ExpectInputError(Corrupt(dir, v14, "vlr.las",
                            [](auto* b) {
@@ -175,7 +177,7 @@ TEST(LasReaderTest, RejectsLaz) {
                              std::memcpy(&(*b)[375 + 2], "laszip encoded", 14);
                              PutU16(b, 375 + 18, 22204);
                            }),
-                   "compressed LAZ is not supported");
+                   "LAZ");
 }
 
 TEST(LasReaderTest, ToleratesOverstatedVlrCountOnlyWhenVlrsEndAtThePoints) {

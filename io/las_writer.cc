@@ -12,13 +12,14 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/las_format.h"
+#include "io/laz_chunk_writer.h"
 
 namespace sacfuse {
 namespace lf = las_format;
 
 namespace {
 
-constexpr size_t kBufferRecords = 65536;  // records buffered before one fwrite
+constexpr size_t kBufferRecords = 65536;  // records buffered before one fwrite (LAZ: one chunk)
 constexpr double kAutoOffsetGrid = 1000.0;  // metres; the automatic offset is a multiple of this
 constexpr double kMaxScale = 1000.0;        // so that the automatic offset is a multiple of the scale
 
@@ -63,7 +64,9 @@ struct LasWriter::Impl {
   uint16_t creation_year = 0;
 
   FILE* file = nullptr;
-  std::vector<uint8_t> buffer;  // kBufferRecords records
+  std::unique_ptr<LazChunkWriter> laz;  // set when writing LAZ
+  size_t buffer_records = kBufferRecords;
+  std::vector<uint8_t> buffer;  // buffer_records records
   size_t buffered = 0;          // records in buffer
   uint64_t count = 0;
   std::array<uint64_t, 15> by_return = {};
@@ -142,7 +145,7 @@ struct LasWriter::Impl {
       }
       if (point.return_number >= 1 && point.return_number <= 15) ++by_return[point.return_number - 1];
       ++count;
-      if (++buffered == kBufferRecords) FlushBuffer();
+      if (++buffered == buffer_records) FlushBuffer();
     }
   }
 };
@@ -192,6 +195,17 @@ void LasWriter::Impl::ValidateOptions() {
     throw Error(path + ": system identifier and generating software are limited to 32 characters");
   }
   uint64_t vlr_bytes = 0;
+  // A laszip VLR describes compressed data: never copied (LAZ gets our own below).
+  options.vlrs.erase(std::remove_if(options.vlrs.begin(), options.vlrs.end(),
+                                    [](const LasVlr& v) {
+                                      return v.user_id == lf::kLaszipUserId && v.record_id == lf::kLaszipRecordId;
+                                    }),
+                     options.vlrs.end());
+  if (options.compressed) {
+    laz = std::make_unique<LazChunkWriter>(pdrf, record_length);
+    buffer_records = LazChunkWriter::kChunkPoints;
+    options.vlrs.push_back(laz->Vlr());
+  }
   for (const LasVlr& vlr : options.vlrs) {
     const std::string what = "VLR " + vlr.user_id + "/" + std::to_string(vlr.record_id);
     if (vlr.user_id.size() > 16 || vlr.description.size() > 32) {
@@ -232,7 +246,7 @@ std::vector<uint8_t> LasWriter::Impl::BuildHeader(uint64_t evlr_start, uint32_t 
   lf::PutU16(&h[lf::kOffHeaderSize], static_cast<uint16_t>(header_size));
   lf::PutU32(&h[lf::kOffPointOffset], point_offset);
   lf::PutU32(&h[lf::kOffNumVlrs], num_vlrs);
-  h[lf::kOffPdrf] = static_cast<uint8_t>(pdrf);
+  h[lf::kOffPdrf] = static_cast<uint8_t>(pdrf | (laz ? 0x80 : 0));  // LASzip marks compression with bit 7
   lf::PutU16(&h[lf::kOffRecordLength], static_cast<uint16_t>(record_length));
   // Legacy counts: the only counts before 1.4; in 1.4 zero for PDRF >= 6 or counts beyond 32 bits.
   const bool legacy = version_minor < 4 || (pdrf < 6 && count <= std::numeric_limits<uint32_t>::max());
@@ -267,7 +281,14 @@ void LasWriter::Impl::WriteBytes(const uint8_t* data, size_t size) {
 }
 
 void LasWriter::Impl::FlushBuffer() {
-  WriteBytes(buffer.data(), buffered * record_length);
+  if (laz) {
+    if (buffered > 0) {
+      const std::vector<uint8_t>& chunk = laz->Chunk(buffer.data(), buffered);
+      WriteBytes(chunk.data(), chunk.size());
+    }
+  } else {
+    WriteBytes(buffer.data(), buffered * record_length);
+  }
   buffered = 0;
 }
 
@@ -290,11 +311,15 @@ void LasWriter::Impl::Open() {
       WriteBytes(head, sizeof(head));
       WriteBytes(vlr.data.data(), vlr.data.size());
     }
+    if (laz) {
+      const uint8_t table_offset[8] = {};  // patched at Close()
+      WriteBytes(table_offset, sizeof(table_offset));
+    }
   } catch (...) {
     Discard();
     throw;
   }
-  buffer.resize(kBufferRecords * record_length);
+  buffer.resize(buffer_records * record_length);
 }
 
 void LasWriter::Impl::Discard() {
@@ -334,8 +359,16 @@ void LasWriter::Close() {
   }
   try {
     w.FlushBuffer();
+    uint64_t points_end = w.point_offset + w.count * w.record_length;
+    uint64_t chunk_table = 0;
+    if (w.laz) {  // LAZ: the chunk table closes the point data
+      chunk_table = w.point_offset + 8 + w.laz->chunk_bytes();
+      const std::vector<uint8_t> table = w.laz->Table();
+      w.WriteBytes(table.data(), table.size());
+      points_end = chunk_table + table.size();
+    }
     // EVLRs follow the points (LAS 1.4 only; ValidateOptions rejected them otherwise).
-    const uint64_t evlr_start = w.point_offset + w.count * w.record_length;
+    const uint64_t evlr_start = points_end;
     uint32_t num_evlrs = 0;
     for (const LasVlr& vlr : w.options.vlrs) {
       if (!vlr.extended) continue;
@@ -351,6 +384,14 @@ void LasWriter::Close() {
     const std::vector<uint8_t> header = w.BuildHeader(num_evlrs > 0 ? evlr_start : 0, num_evlrs);
     if (std::fseek(w.file, 0, SEEK_SET) != 0) w.Fail(std::string("seek failed: ") + std::strerror(errno));
     w.WriteBytes(header.data(), header.size());
+    if (w.laz) {
+      uint8_t offset[8];
+      lf::PutU64(offset, chunk_table);
+      if (fseeko(w.file, static_cast<off_t>(w.point_offset), SEEK_SET) != 0) {
+        w.Fail(std::string("seek failed: ") + std::strerror(errno));
+      }
+      w.WriteBytes(offset, sizeof(offset));
+    }
     if (std::fflush(w.file) != 0) w.Fail(std::string("flush failed (disk full?): ") + std::strerror(errno));
     if (::fsync(::fileno(w.file)) != 0) w.Fail(std::string("fsync failed: ") + std::strerror(errno));
     FILE* file = w.file;

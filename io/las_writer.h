@@ -1,5 +1,5 @@
 #pragma once
-// Streaming LAS writer: points go to disk in chunks, never the whole cloud in memory.
+// Streaming LAS/LAZ writer: points go to disk in chunks, never the whole cloud in memory.
 //
 // The file is written under a temporary name in the same folder, the header (counts, points by return, bounds
 // from the stored integers) is patched at Close(), the data are fsynced, and only then is the file renamed to
@@ -35,6 +35,10 @@ struct LasWriterOptions {
   std::optional<int> point_format;
   // Per-axis quantisation step overriding scale_m (round trips of third-party files); each 10^k x {1, 0.5, 0.25}.
   std::optional<Eigen::Vector3d> scale_xyz;
+  // Write LAZ (LASzip-compressed; io/laz_chunk_writer.h): point format id with bit 7 set, a "laszip encoded" VLR,
+  // 50,000 points a chunk (memory bounded by one chunk), the chunk table after the last chunk, EVLRs after it.
+  // Point formats 0-3 and 6-8 as for LAS. A "laszip encoded" VLR given in `vlrs` is never copied.
+  bool compressed = false;
 };
 
 class LasWriter : public PointSink {

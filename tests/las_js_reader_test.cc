@@ -1,4 +1,4 @@
-// Our LAS files read by an independent reader: the npm package @loaders.gl/las (tests/las_js, installed by
+// Our LAS and LAZ files read by independent readers: the npm package @loaders.gl/las (tests/las_js, installed by
 // tools/install_deps.sh with `npm ci --prefix tests/las_js`). Files written by LasWriter (LAS 1.2 and 1.4, UTM-size
 // coordinates, colours, source IDs, CRS records) and by `sacfuse run` on a simulated tiny block (crs EPSG:25832;
 // LAS 1.4 tiled: tile files + merged fused.las; LAS 1.2 untiled) are read by tests/las_js/read_las.mjs and
@@ -6,6 +6,10 @@
 // point source IDs, the CRS record; each file must also pass `sacfuse validate`.
 // Skips with a message when node or tests/las_js/node_modules is missing, except under CI (CI=true), where that
 // is a failure: CI installs them.
+// LAZ (LasWriterOptions::compressed): tests/las_js/decode_laz.mjs decodes our LAZ files with laz-perf (npm, the
+// LASzip C++ code in WASM) and laz-rs (the WASM build inside @loaders.gl/las); both must give, byte for byte, the
+// point records of the LAS file written from the same points (every attribute), for point formats 0-3 (LAS 1.2
+// and 1.4) and 6-8 (LAS 1.4), multi-chunk, empty and 1-point files; LAZRsLoader must read the same positions.
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -47,6 +51,9 @@ std::optional<std::string> ReaderUnavailable() {
   if (!fs::exists(LasJsDir() / "node_modules" / "@loaders.gl" / "las" / "package.json")) {
     return (LasJsDir() / "node_modules").string() + " is missing (run `npm ci --prefix tests/las_js`, as "
                                                     "tools/install_deps.sh does)";
+  }
+  if (!fs::exists(LasJsDir() / "node_modules" / "laz-perf" / "package.json")) {
+    return (LasJsDir() / "node_modules" / "laz-perf").string() + " is missing (run `npm ci --prefix tests/las_js`)";
   }
   return std::nullopt;
 }
@@ -224,6 +231,87 @@ TEST(LasJsReaderTest, ReadsOurWriterFilesExactly) {
     }
     CompareRaw(seen.at("raw"), path, crs);
     ExpectValid(path);
+  }
+}
+
+// Runs tests/las_js/decode_laz.mjs on `laz`; returns its JSON (the records are in <laz>.<decoder>.bin).
+json DecodeLaz(const fs::path& laz) {
+  const fs::path out = fs::path(laz).replace_extension(".decode.json");
+  const fs::path err = fs::path(laz).replace_extension(".decode.err");
+  const std::string cmd = "cd " + ShellQuote(LasJsDir()) + " && node decode_laz.mjs " + ShellQuote(laz) + " " +
+                          ShellQuote(laz) + " > " + ShellQuote(out) + " 2> " + ShellQuote(err);
+  std::string ignored;
+  EXPECT_EQ(RunCommand(cmd, &ignored), 0) << cmd << "\n" << testing::ReadFileBytes(err);
+  std::ifstream in(out);
+  return json::parse(in);
+}
+
+// The point records of an uncompressed LAS file.
+std::string LasPointRecords(const fs::path& las) {
+  LasHeader h;
+  { LasReader reader(las.string()); h = reader.header(); }
+  return testing::ReadFileBytes(las).substr(h.offset_to_point_data, h.point_count * h.point_record_length);
+}
+
+TEST(LasJsReaderTest, LazPerfAndLazRsDecodeOurLazToTheLasRecords) {
+  REQUIRE_READER();
+  TempDir dir;
+  struct Case {
+    int minor, pdrf;
+    size_t n;
+  };
+  const Case cases[] = {{2, 0, 1500}, {2, 1, 1500}, {2, 2, 1500}, {2, 3, 1500}, {4, 1, 1500}, {4, 6, 1500},
+                        {4, 7, 1500}, {4, 8, 1500}, {2, 3, 120001}, {4, 7, 120001}, {2, 3, 0}, {4, 7, 0},
+                        {2, 3, 1}, {4, 7, 1}, {4, 8, 1}};
+  for (const Case& c : cases) {
+    const std::string name = "f" + std::to_string(c.pdrf) + "_1" + std::to_string(c.minor) + "_" + std::to_string(c.n);
+    SCOPED_TRACE(name);
+    std::vector<LasPoint> pts = KnownPoints(c.n);
+    for (size_t i = 0; i < pts.size(); ++i) {
+      LasPoint& p = pts[i];
+      p.intensity = static_cast<uint16_t>(i * 7);
+      p.number_of_returns = static_cast<uint8_t>(1 + i % 5);
+      p.return_number = static_cast<uint8_t>(1 + i % p.number_of_returns);
+      p.classification = static_cast<uint8_t>(i % 19);
+      p.scan_direction = i % 3 == 0;
+      p.edge_of_flight_line = i % 17 == 0;
+      p.scan_angle_deg = c.pdrf >= 6 ? 0.006f * static_cast<float>(i % 900) : static_cast<float>(i % 40) - 20.0f;
+      p.user_data = static_cast<uint8_t>(i / 50);
+      if (c.pdrf >= 6) p.scanner_channel = static_cast<uint8_t>((i / 100) % 4);
+      if (c.pdrf >= 6) p.flags = static_cast<uint8_t>(i % 16);
+      if (c.pdrf != 0 && c.pdrf != 2) p.gps_time = 271828.0 + 0.0001 * static_cast<double>(i / 2);
+      if (c.pdrf == 0 || c.pdrf == 1 || c.pdrf == 6) p.rgb = {0, 0, 0};
+      if (c.pdrf == 8) p.nir = static_cast<uint16_t>(i * 3);
+    }
+    for (bool compressed : {false, true}) {
+      LasWriterOptions o;
+      o.version_minor = c.minor;
+      o.point_format = c.pdrf;
+      o.compressed = compressed;
+      LasWriter w((dir / (name + (compressed ? ".laz" : ".las"))).string(), o);
+      w.WritePoints(pts.data(), pts.size());
+      w.Close();
+    }
+    const fs::path laz = dir / (name + ".laz");
+    const std::string expected = LasPointRecords(dir / (name + ".las"));
+    const json seen = DecodeLaz(laz);
+    for (const char* decoder : {"laz-perf", "laz-rs"}) {
+      const json& d = seen.at("decoders").at(decoder);
+      ASSERT_FALSE(d.contains("error")) << decoder << ": " << d.value("error", "");
+      EXPECT_EQ(d.at("count").get<size_t>(), c.n) << decoder;
+      EXPECT_EQ(d.at("point_format").get<int>(), c.pdrf) << decoder;
+      const std::string got = testing::ReadFileBytes(laz.string() + "." + decoder + ".bin");
+      EXPECT_EQ(got.size(), expected.size()) << decoder;
+      EXPECT_TRUE(got == expected) << decoder << " decoded other records than the LAS twin's";
+    }
+    if (c.n == 1500 || c.n == 120001) {
+      // And @loaders.gl/las' LAZRsLoader reads the positions and colours our reader reads.
+      const Comparison cmp = CompareLoader(ReadWithLoadersGl(laz, 200000).at("loaders").at("laz-rs"), laz, &pts);
+      EXPECT_EQ(cmp.points_compared, c.n);
+    }
+    std::printf("[ las_js   ] %s: laz-perf and laz-rs decode the %zu records of the LAS twin byte for byte (%ju -> %ju bytes)\n",
+                laz.filename().c_str(), c.n, static_cast<uintmax_t>(fs::file_size(dir / (name + ".las"))),
+                static_cast<uintmax_t>(fs::file_size(laz)));
   }
 }
 

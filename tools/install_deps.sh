@@ -68,9 +68,9 @@ if [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
   fi
 fi
 
-# Test-time only: Node.js + npm and the npm packages of tests/las_js -- an independent LAS reader
-# (@loaders.gl/las, pinned in tests/las_js/package-lock.json) that tests/las_js_reader_test.cc runs on the files
-# we write; never used at run time. Debian's nodejs and npm are installed only when node or npm is missing (a
+# Test-time only: Node.js + npm and the npm packages of tests/las_js -- independent LAS/LAZ readers
+# (@loaders.gl/las with laz-rs, and laz-perf; pinned in tests/las_js/package-lock.json) that
+# tests/las_js_reader_test.cc runs on the files we write; never used at run time. Debian's nodejs and npm are installed only when node or npm is missing (a
 # machine that already has Node.js keeps it). `npm ci` runs again only when package-lock.json changed.
 if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
   echo "[install_deps] installing nodejs npm (test-time LAS reader)"

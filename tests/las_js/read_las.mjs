@@ -120,6 +120,8 @@ function readRaw(pointsOffset, recordLength, pointFormat, count) {
     }
     at += 54 + length;
   }
+  raw.point_source_id = null;
+  if (view.getUint8(104) & 0x80) return raw;  // LAZ: the records are compressed (decode_laz.mjs checks them)
   const idOffset = pointFormat >= 6 ? 20 : 18;
   const k = stride(count);
   raw.point_source_id = [];

@@ -1,0 +1,42 @@
+#pragma once
+// What LasWriter needs to write LAZ (LASzip compressed data format) instead of LAS: the "laszip encoded" VLR for
+// the header, one compressed chunk per 50,000 records, and the chunk table that closes the point data. The file
+// I/O stays LasWriter's. Private to io/.
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "io/las_types.h"
+
+namespace sacfuse {
+
+namespace laz {
+class ChunkEncoder;
+struct ChunkEntry;
+}  // namespace laz
+
+class LazChunkWriter {
+ public:
+  static constexpr size_t kChunkPoints = 50000;
+  // Point formats 0-3 (point-wise, items version 2) and 6-8 (layered, version 3); `record_length` may include
+  // extra bytes.
+  LazChunkWriter(int pdrf, size_t record_length);
+  ~LazChunkWriter();
+  LasVlr Vlr() const;
+  // Compresses `count` (1..kChunkPoints) records into one chunk; the bytes stay valid until the next call.
+  const std::vector<uint8_t>& Chunk(const uint8_t* records, size_t count);
+  // Bytes of all chunks made so far.
+  uint64_t chunk_bytes() const { return total_bytes_; }
+  // The chunk table of the chunks made so far.
+  std::vector<uint8_t> Table() const;
+
+ private:
+  std::vector<uint8_t> vlr_payload_;
+  std::unique_ptr<laz::ChunkEncoder> encoder_;
+  std::vector<uint8_t> chunk_;
+  std::vector<laz::ChunkEntry> entries_;
+  uint64_t total_bytes_ = 0;
+};
+
+}  // namespace sacfuse

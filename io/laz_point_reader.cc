@@ -1,0 +1,168 @@
+#include "io/laz_point_reader.h"
+
+#include <cerrno>
+#include <algorithm>
+#include <cstring>
+
+#include "core/error.h"
+#include "io/las_format.h"
+#include "io/laz_arithmetic.h"
+#include "io/laz_chunk_codec.h"
+#include "io/laz_chunk_table.h"
+#include "io/laz_vlr.h"
+
+namespace sacfuse {
+namespace lf = las_format;
+
+namespace {
+
+constexpr size_t kMaxTableBytesPerChunk = 32;  // generous bound of one coded table entry (two 32-bit integers)
+
+}  // namespace
+
+LazPointReader::LazPointReader(const std::string& path, FILE* file, uint64_t file_size, const LasHeader& header,
+                               const std::vector<uint8_t>& laszip_vlr)
+    : path_(path),
+      file_(file),
+      file_size_(file_size),
+      record_length_(header.point_record_length),
+      point_count_(header.point_count),
+      point_data_offset_(header.offset_to_point_data) {
+  laz::LazVlr vlr;
+  try {
+    vlr = laz::LazVlr::Parse(laszip_vlr);
+  } catch (const laz::DataError& e) {
+    Fail(std::string("LAZ: ") + e.what());
+  }
+  const std::string unsupported = vlr.Unsupported(header.point_format, record_length_);
+  if (!unsupported.empty()) {
+    Fail("LAZ point format " + std::to_string(header.point_format) + ": " + unsupported +
+         "; decompress it with laszip or pdal first");
+  }
+  decoder_ = std::make_unique<laz::ChunkDecoder>(vlr, record_length_);
+  ReadChunkTable(vlr.chunk_size);
+}
+
+LazPointReader::~LazPointReader() = default;
+
+void LazPointReader::Fail(const std::string& message) const { throw InputError(path_, message); }
+
+void LazPointReader::ReadAt(uint64_t position, uint8_t* out, size_t size) const {
+  if (position > file_size_ || size > file_size_ - position) {
+    Fail("LAZ: " + std::to_string(size) + " bytes at offset " + std::to_string(position) +
+         " run past the end of the file (" + std::to_string(file_size_) + " bytes; truncated?)");
+  }
+  if (size == 0) return;
+  if (fseeko(file_, static_cast<off_t>(position), SEEK_SET) != 0 || std::fread(out, 1, size, file_) != size) {
+    Fail("cannot read " + std::to_string(size) + " bytes at offset " + std::to_string(position) + ": " +
+         std::strerror(errno));
+  }
+}
+
+void LazPointReader::ReadChunkTable(uint32_t chunk_size) {
+  const bool variable = chunk_size == laz::kVariableChunkSize;
+  uint8_t word[8];
+  // The point data open with the chunk table's offset (-1: written at the very end of the file by a streaming
+  // writer); the chunks follow.
+  const uint64_t chunks_start = point_data_offset_ + 8;
+  {
+    ReadAt(point_data_offset_, word, 8);
+    int64_t offset = static_cast<int64_t>(lf::GetU64(word));
+    if (offset == -1) {
+      if (file_size_ < chunks_start + 8) Fail("LAZ: no chunk table offset at the end of the file (truncated?)");
+      ReadAt(file_size_ - 8, word, 8);
+      offset = static_cast<int64_t>(lf::GetU64(word));
+    }
+    if (offset < static_cast<int64_t>(chunks_start) ||
+        static_cast<uint64_t>(offset) + laz::kChunkTableHeaderSize > file_size_) {
+      Fail("LAZ: the chunk table offset " + std::to_string(offset) + " is outside the file (" +
+           std::to_string(file_size_) + " bytes): truncated, or written by an interrupted compressor");
+    }
+    table_offset_ = static_cast<uint64_t>(offset);
+  }
+  ReadAt(table_offset_, word, 8);
+  if (lf::GetU32(word) != 0) Fail("LAZ: chunk table version " + std::to_string(lf::GetU32(word)) + " (expected 0)");
+  const uint32_t count = lf::GetU32(word + 4);
+  const uint64_t expected = variable ? 0 : (point_count_ + chunk_size - 1) / chunk_size;
+  if ((!variable && count != expected) || (variable && count > point_count_)) {
+    Fail("LAZ: the chunk table lists " + std::to_string(count) + " chunks for " + std::to_string(point_count_) +
+         " points" + (variable ? "" : " of " + std::to_string(chunk_size) + " a chunk") + " (corrupt)");
+  }
+  // Every chunk stores at least its first record raw: more chunks than that cannot fit.
+  if (count > (table_offset_ - chunks_start) / record_length_) {
+    Fail("LAZ: the chunk table lists " + std::to_string(count) + " chunks, more than fit in " +
+         std::to_string(table_offset_ - chunks_start) + " bytes of point data (corrupt)");
+  }
+  const uint64_t stream_start = table_offset_ + laz::kChunkTableHeaderSize;
+  std::vector<uint8_t> stream(
+      static_cast<size_t>(std::min<uint64_t>(file_size_ - stream_start, kMaxTableBytesPerChunk * uint64_t{count} + 64)));
+  ReadAt(stream_start, stream.data(), stream.size());
+  std::vector<laz::ChunkEntry> entries;
+  try {
+    entries = laz::DecodeChunkTable(stream.data(), stream.size(), count, variable);
+  } catch (const laz::DataError& e) {
+    Fail(std::string("LAZ chunk table: ") + e.what());
+  }
+  uint64_t start = chunks_start;
+  uint64_t first = 0;
+  chunks_.clear();
+  for (uint32_t i = 0; i < count; ++i) {
+    Chunk c;
+    c.start = start;
+    c.bytes = entries[i].bytes;
+    c.first_point = first;
+    c.points = variable ? entries[i].points : std::min<uint64_t>(chunk_size, point_count_ - first);
+    if (c.bytes > table_offset_ - start) {
+      Fail("LAZ chunk " + std::to_string(i) + " of " + std::to_string(count) + " (" + std::to_string(c.bytes) +
+           " bytes at offset " + std::to_string(start) + ") runs into the chunk table (corrupt chunk table)");
+    }
+    if (c.points == 0) Fail("LAZ chunk " + std::to_string(i) + " holds no points (corrupt chunk table)");
+    start += c.bytes;
+    first += c.points;
+    chunks_.push_back(c);
+  }
+  if (first != point_count_) {
+    Fail("LAZ: the chunks hold " + std::to_string(first) + " points, the header says " +
+         std::to_string(point_count_));
+  }
+}
+
+void LazPointReader::StartChunk(size_t index) {
+  const Chunk& c = chunks_[index];
+  chunk_bytes_.resize(static_cast<size_t>(c.bytes));
+  ReadAt(c.start, chunk_bytes_.data(), chunk_bytes_.size());
+  try {
+    decoder_->Start(chunk_bytes_.data(), chunk_bytes_.size(), c.points);
+  } catch (const laz::DataError& e) {
+    Fail("LAZ chunk " + std::to_string(index) + " of " + std::to_string(chunks_.size()) + ": " + e.what());
+  }
+  chunk_ = index;
+  left_in_chunk_ = c.points;
+}
+
+void LazPointReader::Read(uint8_t* records, size_t count) {
+  for (size_t i = 0; i < count; ++i) {
+    if (left_in_chunk_ == 0) {
+      const size_t next = started_ ? chunk_ + 1 : 0;
+      if (next >= chunks_.size()) Fail("LAZ: read past the last point");
+      StartChunk(next);
+      started_ = true;
+    }
+    try {
+      decoder_->Next(records + i * record_length_);
+    } catch (const laz::DataError& e) {
+      const Chunk& c = chunks_[chunk_];
+      Fail("LAZ chunk " + std::to_string(chunk_) + " of " + std::to_string(chunks_.size()) + " (points " +
+           std::to_string(c.first_point) + ".." + std::to_string(c.first_point + c.points - 1) + "): " + e.what());
+    }
+    --left_in_chunk_;
+  }
+}
+
+void LazPointReader::Rewind() {
+  started_ = false;
+  left_in_chunk_ = 0;
+  chunk_ = 0;
+}
+
+}  // namespace sacfuse

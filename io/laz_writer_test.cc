@@ -1,0 +1,257 @@
+// LasWriter with compressed = true writes LAZ that LasReader decodes to exactly the points of the LAS twin
+// written from the same points: every point format we write (0-3 with LAS 1.2 and 1.4, 6-8 with LAS 1.4), a
+// multi-chunk file, an empty file and a 1-point file; the LASzip framing (format bit 7, laszip VLR, chunk table
+// offset, EVLRs after the chunk table); no file when a writer dies before Close(); and truncated or corrupted
+// LAZ give an InputError naming the file, never a crash, hang or huge allocation.
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "io/las_format.h"
+#include "io/las_reader.h"
+#include "io/las_writer.h"
+#include "tests/support/test_support.h"
+
+namespace sacfuse {
+namespace {
+
+namespace fs = std::filesystem;
+namespace lf = las_format;
+using testing::TempDir;
+
+std::vector<uint8_t> ReadBytes(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::vector<uint8_t>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+void WriteBytes(const fs::path& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
+                                              static_cast<std::streamsize>(bytes.size()));
+}
+
+// Points using every field `pdrf` holds, varying like aerial data (returns, flight lines, channels).
+std::vector<LasPoint> MakePoints(int pdrf, size_t n, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::vector<LasPoint> pts(n);
+  double t = 412345.25;
+  for (size_t i = 0; i < n; ++i) {
+    LasPoint& p = pts[i];
+    p.xyz = {391234.567 + 0.01 * static_cast<double>(rng() % 100000), 5706543.21 + 0.731 * static_cast<double>(i % 5000),
+             87.5 + 0.001 * static_cast<double>(rng() % 20000)};
+    p.intensity = static_cast<uint16_t>(i % 9 == 0 ? rng() : 300 + i % 17);
+    const bool extended = pdrf >= 6;
+    p.number_of_returns = static_cast<uint8_t>(1 + (i / 4) % (extended ? 15 : 7));
+    p.return_number = static_cast<uint8_t>(1 + i % p.number_of_returns);
+    p.classification = static_cast<uint8_t>(extended ? (i / 50) % 256 : (i / 50) % 32);
+    p.flags = static_cast<uint8_t>(i % 23 == 0 ? (extended ? 9 : 5) : 0);
+    p.scanner_channel = static_cast<uint8_t>(extended ? (i / 1000) % 4 : 0);
+    p.scan_direction = (i / 30) % 2 == 1;
+    p.edge_of_flight_line = i % 101 == 0;
+    p.scan_angle_deg = extended ? static_cast<float>(static_cast<int>(i % 4001) - 2000) * 0.006f
+                                : static_cast<float>(static_cast<int>(i % 61) - 30);
+    p.user_data = static_cast<uint8_t>(i / 777);
+    p.point_source_id = static_cast<uint16_t>(1 + i / 3000);
+    if (lf::HasGpsTime(pdrf)) {
+      t += (i % 3 == 0) ? 1e-5 * (1 + rng() % 3) : 0.0;
+      if (i % 10007 == 0) t += 3600.0;
+      p.gps_time = t;
+    }
+    if (lf::HasRgb(pdrf)) {
+      p.rgb = {static_cast<uint16_t>(256 * (i % 256)), static_cast<uint16_t>(rng() % 65536),
+               static_cast<uint16_t>(i % 5 == 0 ? 0 : 4096)};
+    }
+    if (lf::HasNir(pdrf)) p.nir = static_cast<uint16_t>(i % 4 == 0 ? rng() : 1234);
+  }
+  return pts;
+}
+
+void Write(const fs::path& path, int minor, int pdrf, const std::vector<LasPoint>& pts, bool compressed,
+           const std::vector<LasVlr>& vlrs = {}) {
+  LasWriterOptions o;
+  o.version_minor = minor;
+  o.point_format = pdrf;
+  o.compressed = compressed;
+  o.offset = Eigen::Vector3d(391000, 5706000, 0);
+  o.vlrs = vlrs;
+  LasWriter w(path.string(), o);
+  // Uneven batches: chunk boundaries fall inside them.
+  for (size_t at = 0; at < pts.size();) {
+    const size_t n = std::min<size_t>(pts.size() - at, 7919);
+    w.WritePoints(pts.data() + at, n);
+    at += n;
+  }
+  w.Close();
+}
+
+void ExpectSamePoints(const std::vector<LasPoint>& a, const std::vector<LasPoint>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  size_t bad = 0;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const LasPoint& p = a[i];
+    const LasPoint& q = b[i];
+    const bool same = p.xyz == q.xyz && p.intensity == q.intensity && p.return_number == q.return_number &&
+                      p.number_of_returns == q.number_of_returns && p.classification == q.classification &&
+                      p.flags == q.flags && p.scanner_channel == q.scanner_channel &&
+                      p.scan_direction == q.scan_direction && p.edge_of_flight_line == q.edge_of_flight_line &&
+                      p.scan_angle_deg == q.scan_angle_deg && p.user_data == q.user_data &&
+                      p.point_source_id == q.point_source_id && p.gps_time == q.gps_time && p.rgb == q.rgb &&
+                      p.nir == q.nir;
+    if (!same && bad++ < 3) ADD_FAILURE() << "point " << i << " differs";
+  }
+  EXPECT_EQ(bad, 0u);
+}
+
+struct Layout {
+  int minor;
+  int pdrf;
+};
+const Layout kLayouts[] = {{2, 0}, {2, 1}, {2, 2}, {2, 3}, {4, 0}, {4, 3}, {4, 6}, {4, 7}, {4, 8}};
+
+TEST(LazWriterTest, EveryFormatDecodesToItsLasTwin) {
+  TempDir dir;
+  for (const Layout& l : kLayouts) {
+    for (size_t n : {size_t{0}, size_t{1}, size_t{2}, size_t{3000}}) {
+      SCOPED_TRACE("LAS 1." + std::to_string(l.minor) + " PDRF " + std::to_string(l.pdrf) + " n=" + std::to_string(n));
+      const std::vector<LasPoint> pts = MakePoints(l.pdrf, n, 5);
+      const fs::path las = dir / "twin.las";
+      const fs::path laz = dir / "twin.laz";
+      Write(las, l.minor, l.pdrf, pts, false);
+      Write(laz, l.minor, l.pdrf, pts, true);
+      LasHeader hs, hz;
+      const std::vector<LasPoint> from_las = ReadAllLasPoints(las.string(), &hs);
+      const std::vector<LasPoint> from_laz = ReadAllLasPoints(laz.string(), &hz);
+      ExpectSamePoints(from_laz, from_las);
+      EXPECT_EQ(hz.point_format, hs.point_format);
+      EXPECT_EQ(hz.point_record_length, hs.point_record_length);
+      EXPECT_EQ(hz.point_count, n);
+      EXPECT_EQ(hz.points_by_return, hs.points_by_return);
+      EXPECT_EQ(hz.min, hs.min);
+      EXPECT_EQ(hz.max, hs.max);
+      EXPECT_EQ(hz.vlrs.size(), 0u);  // the laszip VLR is the reader's business
+      const std::vector<uint8_t> b = ReadBytes(laz);
+      EXPECT_EQ(b[lf::kOffPdrf], l.pdrf | 0x80);
+      const size_t header_size = lf::GetU16(&b[lf::kOffHeaderSize]);
+      EXPECT_EQ(std::string(reinterpret_cast<const char*>(&b[header_size + 2])), "laszip encoded");
+      EXPECT_EQ(lf::GetU16(&b[header_size + 18]), 22204);
+      const uint64_t table = lf::GetU64(&b[lf::GetU32(&b[lf::kOffPointOffset])]);
+      EXPECT_EQ(lf::GetU32(&b[table + 4]), n == 0 ? 0u : 1u);  // chunks
+      if (n == 3000) EXPECT_LT(b.size() * 2, fs::file_size(las));
+    }
+  }
+}
+
+TEST(LazWriterTest, MultiChunkFileWithEvlrsAndFusedPoints) {
+  TempDir dir;
+  const std::vector<LasPoint> pts = MakePoints(7, 123457, 9);
+  LasVlr evlr;
+  evlr.user_id = "sacfuse";
+  evlr.record_id = 7;
+  evlr.data = {1, 2, 3, 4, 5};
+  evlr.extended = true;
+  Write(dir / "big.las", 4, 7, pts, false, {evlr});
+  Write(dir / "big.laz", 4, 7, pts, true, {evlr});
+  LasHeader h;
+  ExpectSamePoints(ReadAllLasPoints((dir / "big.laz").string(), &h), ReadAllLasPoints((dir / "big.las").string()));
+  ASSERT_EQ(h.vlrs.size(), 1u);
+  EXPECT_EQ(h.vlrs[0].data, evlr.data);
+  const std::vector<uint8_t> b = ReadBytes(dir / "big.laz");
+  const uint64_t table = lf::GetU64(&b[lf::GetU32(&b[lf::kOffPointOffset])]);
+  EXPECT_EQ(lf::GetU32(&b[table + 4]), 3u);  // 50,000 + 50,000 + 23,457
+  EXPECT_GT(lf::GetU64(&b[lf::kOffEvlrStart]), table);
+
+  // Fused points through Write(), LAS 1.2 format 3 and LAS 1.4 format 7.
+  for (int minor : {2, 4}) {
+    std::vector<FusedPoint> fused(60001);
+    for (size_t i = 0; i < fused.size(); ++i) {
+      fused[i].point_in_world = {390123.4567 + 0.013 * static_cast<double>(i % 977), 5705123.4567 + 0.002 * i, 52.3};
+      fused[i].rgb = {static_cast<uint8_t>(i), static_cast<uint8_t>(i / 7), 200};
+      fused[i].view_index = static_cast<uint32_t>(i / 5000);
+    }
+    for (bool compressed : {false, true}) {
+      LasWriterOptions o;
+      o.version_minor = minor;
+      o.compressed = compressed;
+      LasWriter w((dir / (compressed ? "fused.laz" : "fused.las")).string(), o);
+      w.Write(fused.data(), fused.size());
+      w.Close();
+    }
+    ExpectSamePoints(ReadAllLasPoints((dir / "fused.laz").string()), ReadAllLasPoints((dir / "fused.las").string()));
+  }
+}
+
+TEST(LazWriterTest, NoFileWithoutCloseAndReaderRewinds) {
+  TempDir dir;
+  const std::vector<LasPoint> pts = MakePoints(3, 70000, 2);
+  {
+    LasWriterOptions o;
+    o.version_minor = 2;
+    o.compressed = true;
+    LasWriter w((dir / "killed.laz").string(), o);
+    w.WritePoints(pts.data(), pts.size());
+  }
+  EXPECT_TRUE(fs::is_empty(dir.path()));
+  Write(dir / "a.laz", 2, 3, pts, true);
+  LasReader reader((dir / "a.laz").string());
+  std::vector<LasPoint> first, again;
+  ASSERT_EQ(reader.Read(&first, 60000), 60000u);
+  reader.Rewind();
+  ASSERT_EQ(reader.Read(&again, 60000), 60000u);
+  ExpectSamePoints(first, again);
+}
+
+void ExpectInputError(const fs::path& path, const std::string& word) {
+  try {
+    ReadAllLasPoints(path.string());
+    ADD_FAILURE() << path << " was read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+  }
+}
+
+TEST(LazWriterTest, TruncatedOrCorruptLazGivesInputError) {
+  TempDir dir;
+  for (int pdrf : {3, 7}) {
+    SCOPED_TRACE(pdrf);
+    Write(dir / "ok.laz", pdrf == 3 ? 2 : 4, pdrf, MakePoints(pdrf, 120000, 4), true);
+    const std::vector<uint8_t> good = ReadBytes(dir / "ok.laz");
+    const size_t point_offset = lf::GetU32(&good[lf::kOffPointOffset]);
+    const uint64_t table = lf::GetU64(&good[point_offset]);
+    // Truncated anywhere in the point data or the chunk table.
+    for (size_t keep : {point_offset + 4, point_offset + 1000, static_cast<size_t>(table) - 10,
+                        static_cast<size_t>(table) + 3, static_cast<size_t>(table) + 9}) {
+      std::vector<uint8_t> b(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(keep));
+      WriteBytes(dir / "cut.laz", b);
+      ExpectInputError(dir / "cut.laz", "LAZ");
+    }
+    // A chunk table offset pointing nowhere, an impossible number of chunks.
+    std::vector<uint8_t> b = good;
+    lf::PutU64(&b[point_offset], uint64_t{1} << 40);
+    WriteBytes(dir / "offset.laz", b);
+    ExpectInputError(dir / "offset.laz", "chunk table offset");
+    b = good;
+    lf::PutU32(&b[table + 4], 0xFFFFFFF0u);
+    WriteBytes(dir / "chunks.laz", b);
+    ExpectInputError(dir / "chunks.laz", "chunks");
+    // Garbage inside the compressed points: an InputError or wrong values, never a crash or hang.
+    std::mt19937 rng(1);
+    for (int trial = 0; trial < 20; ++trial) {
+      b = good;
+      const size_t at = point_offset + 8 + rng() % (static_cast<size_t>(table) - point_offset - 8);
+      for (int k = 0; k < 16 && at + k < table; ++k) b[at + k] = static_cast<uint8_t>(rng());
+      WriteBytes(dir / "garbage.laz", b);
+      try {
+        ReadAllLasPoints((dir / "garbage.laz").string());
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("LAZ"), std::string::npos) << e.what();
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace sacfuse
