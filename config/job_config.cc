@@ -38,8 +38,10 @@ ConfigSchema MakeSchema(JobConfig* c) {
               "rasters: depth values are z (along the optical axis) | range (distance along the pixel's ray), metres",
               {"z", "range"});
   s.AddString("output.dir", &c->output.dir, "output folder (relative to this file)");
-  s.AddString("output.format", &c->output.format, "point cloud format of DIR/fused.<format>: las (uncompressed)",
-              {"las"});
+  s.AddString("output.format", &c->output.format,
+              "point cloud format of DIR/fused.<format>: laz (LASzip-compressed, 50,000-point chunks) | las "
+              "(uncompressed); tile files stay uncompressed LAS (intermediate, read back by merge and report)",
+              {"laz", "las"});
   s.AddString("output.las_version", &c->output.las_version, "LAS version: 1.4 (point format 7) | 1.2 (format 3)",
               {"1.4", "1.2"});
   s.AddDouble("output.scale_m", &c->output.scale_m, "LAS coordinate quantum, metres; 10^k x {1, 0.5, 0.25}");

@@ -1,5 +1,7 @@
 #include "io/las_validate.h"
 
+#include "io/las_reader.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -52,6 +54,7 @@ class Validator {
     CheckScaleOffset();
     CheckCrs();
     if (size_ok) CheckPoints();
+    if (compressed_) CheckCompressedPoints();
     return findings_;
   }
 
@@ -215,10 +218,7 @@ class Validator {
 
   // Point format vs version and record length. False when the records cannot be walked.
   bool CheckFormatAndLength() {
-    if (compressed_) {
-      Add("point format", "LAZ-compressed (format byte " + std::to_string(h_[lf::kOffPdrf]) + "): decompress to check");
-      return false;
-    }
+    if (compressed_) return false;  // the records are checked decoded (CheckCompressedPoints)
     const int max_pdrf = minor_ <= 1 ? 1 : minor_ == 2 ? 3 : minor_ == 3 ? 5 : 10;
     if (pdrf_ > max_pdrf) {
       Add("point format", std::to_string(pdrf_) + " is not allowed in LAS 1." + std::to_string(minor_) + " (0-" +
@@ -403,12 +403,34 @@ class Validator {
     }
   }
 
-  void CheckPoints() {
+  // What the point-level rules need, gathered point by point (from raw records or from decoded LAZ points).
+  struct PointTally {
     std::array<int32_t, 3> lo{}, hi{};
     std::array<uint64_t, 15> counted{};
-    uint64_t bad_returns = 0, first_bad = 0;
+    uint64_t bad_returns = 0, first_bad = 0, seen = 0;
     double gps_min = 0, gps_max = 0;
+  };
+
+  void Tally(const LasPoint& p, const std::array<int32_t, 3>& stored, PointTally* t) const {
+    const uint64_t index = t->seen++;
+    for (int a = 0; a < 3; ++a) {
+      t->lo[a] = index == 0 ? stored[a] : std::min(t->lo[a], stored[a]);
+      t->hi[a] = index == 0 ? stored[a] : std::max(t->hi[a], stored[a]);
+    }
     const int max_returns = pdrf_ >= 6 ? 15 : 5;
+    const int r = p.return_number, nr = p.number_of_returns;
+    if (r == 0 || nr == 0 || r > nr || nr > max_returns) {
+      if (t->bad_returns++ == 0) t->first_bad = index;
+    }
+    if (r >= 1 && r <= 15) ++t->counted[r - 1];
+    if (lf::HasGpsTime(pdrf_)) {
+      t->gps_min = index == 0 ? p.gps_time : std::min(t->gps_min, p.gps_time);
+      t->gps_max = index == 0 ? p.gps_time : std::max(t->gps_max, p.gps_time);
+    }
+  }
+
+  void CheckPoints() {
+    PointTally t;
     std::vector<uint8_t> buffer;
     uint64_t done = 0;
     LasPoint p;
@@ -421,40 +443,50 @@ class Validator {
       }
       for (size_t i = 0; i < n; ++i) {
         const uint8_t* rec = &buffer[i * record_length_];
-        for (int a = 0; a < 3; ++a) {
-          const int32_t v = lf::GetI32(rec + 4 * a);
-          if (done + i == 0) {
-            lo[a] = hi[a] = v;
-          } else {
-            lo[a] = std::min(lo[a], v);
-            hi[a] = std::max(hi[a], v);
-          }
-        }
         lf::DecodePointRecord(rec, pdrf_, scale_, offset_, &p);
-        const int r = p.return_number, nr = p.number_of_returns;
-        if (r == 0 || nr == 0 || r > nr || nr > max_returns) {
-          if (bad_returns++ == 0) first_bad = done + i;
-        }
-        if (r >= 1 && r <= 15) ++counted[r - 1];
-        if (lf::HasGpsTime(pdrf_)) {
-          if (done + i == 0) gps_min = gps_max = p.gps_time;
-          gps_min = std::min(gps_min, p.gps_time);
-          gps_max = std::max(gps_max, p.gps_time);
-        }
+        Tally(p, {lf::GetI32(rec), lf::GetI32(rec + 4), lf::GetI32(rec + 8)}, &t);
       }
       done += n;
     }
-    if (bad_returns > 0) {
-      Add("return numbers", std::to_string(bad_returns) + " points with return number 0, number of returns 0, " +
-                                "return > number of returns or number of returns > " + std::to_string(max_returns) +
-                                " (first: point " + std::to_string(first_bad) + ")");
+    CheckTally(t);
+  }
+
+  // LAZ: the points decoded by our LAZ reader (io/laz_point_reader.h), which refuses corrupt chunks.
+  void CheckCompressedPoints() {
+    PointTally t;
+    try {
+      LasReader reader(path_);
+      std::vector<LasPoint> chunk;
+      while (reader.Read(&chunk, kChunkRecords) > 0) {
+        for (const LasPoint& p : chunk) {
+          std::array<int32_t, 3> stored{};
+          for (int a = 0; a < 3; ++a) lf::Quantise(p.xyz[a], scale_[a], offset_[a], &stored[a]);
+          Tally(p, stored, &t);
+        }
+      }
+    } catch (const std::exception& e) {
+      Add("LAZ", e.what());
+      return;
     }
-    CheckByReturn(counted);
-    if (count_ > 0) CheckBounds(lo, hi);
-    if (count_ > 0 && lf::HasGpsTime(pdrf_) && (global_encoding_ & 0x1) == 0 &&
-        (gps_min < 0.0 || gps_max > kGpsWeekSeconds)) {
-      Add("global encoding", "GPS time bit (0) clear (GPS week time) but times range " + Num(gps_min) + " to " +
-                                 Num(gps_max) + " s, outside [0, 604800]");
+    if (t.seen != count_) {
+      Add("LAZ", std::to_string(t.seen) + " points decoded, the header says " + std::to_string(count_));
+    }
+    CheckTally(t);
+  }
+
+  void CheckTally(const PointTally& t) {
+    if (t.bad_returns > 0) {
+      Add("return numbers", std::to_string(t.bad_returns) + " points with return number 0, number of returns 0, " +
+                                "return > number of returns or number of returns > " +
+                                std::to_string(pdrf_ >= 6 ? 15 : 5) + " (first: point " + std::to_string(t.first_bad) +
+                                ")");
+    }
+    CheckByReturn(t.counted);
+    if (t.seen > 0) CheckBounds(t.lo, t.hi);
+    if (t.seen > 0 && lf::HasGpsTime(pdrf_) && (global_encoding_ & 0x1) == 0 &&
+        (t.gps_min < 0.0 || t.gps_max > kGpsWeekSeconds)) {
+      Add("global encoding", "GPS time bit (0) clear (GPS week time) but times range " + Num(t.gps_min) + " to " +
+                                 Num(t.gps_max) + " s, outside [0, 604800]");
     }
   }
 

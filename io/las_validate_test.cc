@@ -10,6 +10,7 @@
 #include "core/crs.h"
 #include "io/las_crs.h"
 #include "io/las_format.h"
+#include "io/las_reader.h"
 #include "io/las_writer.h"
 #include "tests/support/test_support.h"
 
@@ -314,6 +315,40 @@ TEST_F(LasValidateTest, CrsRecords) {
                        lf::PutU16(&(*b)[lf::kHeaderSize12 + lf::kVlrHeaderSize + 6], 40);
                      }),
              "CRS", "40 keys");
+}
+
+}  // namespace
+}  // namespace sacfuse
+
+namespace sacfuse {
+namespace {
+
+// LAZ is checked on its decoded points: our own LAZ passes for LAS 1.4 and 1.2; a corrupted chunk is a finding.
+TEST(LasValidateTest, ChecksLazOnItsDecodedPoints) {
+  TempDir dir;
+  for (const int minor : {4, 2}) {
+    FileSpec spec;
+    spec.minor = minor;
+    spec.crs = minor == 4 ? "EPSG:25832" : "EPSG:32632";
+    spec.edit_options = [](LasWriterOptions* o) { o->compressed = true; };
+    const std::string laz = MakeFile(dir, "ok1" + std::to_string(minor) + ".laz", spec);
+    const std::vector<std::string> findings = ValidateLasFile(laz);
+    EXPECT_TRUE(findings.empty()) << minor << ": " << (findings.empty() ? "" : findings[0]);
+  }
+  FileSpec spec;
+  spec.edit_options = [](LasWriterOptions* o) { o->compressed = true; };
+  const std::string laz = MakeFile(dir, "good.laz", spec);
+  LasReader reader(laz);
+  const uint64_t data = reader.header().offset_to_point_data;
+  const std::string bad = Patched(dir, laz, "bad.laz", [&](std::vector<uint8_t>* b) {
+    for (uint64_t i = data + 8 + 40; i < data + 8 + 400 && i < b->size(); ++i) (*b)[i] ^= 0x5a;  // inside chunk 0
+  });
+  const std::vector<std::string> findings = ValidateLasFile(bad);
+  ASSERT_FALSE(findings.empty());
+  bool named = false;
+  for (const std::string& f : findings) named = named || f.rfind("LAZ", 0) == 0 || f.rfind("bounds", 0) == 0 ||
+                                                f.rfind("return numbers", 0) == 0 || f.rfind("points by return", 0) == 0;
+  EXPECT_TRUE(named) << findings[0];
 }
 
 }  // namespace

@@ -215,6 +215,7 @@ ReportData GatherReportData(const JobConfig& config) {
     d.warnings.push_back("no " + EffectiveConfigPath(config));
   }
   d.cloud.path = FusedLasPath(config);
+  d.cloud.name = fs::path(d.cloud.path).filename().string();
   std::error_code ec;
   if (fs::exists(d.cloud.path, ec)) {
     try {

@@ -49,7 +49,8 @@ struct ReportRun {
 };
 
 struct ReportCloud {
-  std::string path;         // fused.las
+  std::string path;         // the fused cloud (jobs/output_layout.h)
+  std::string name;         // its file name: fused.laz or fused.las
   bool exists = false;
   uint64_t points = 0;      // header count
   double min[3] = {0, 0, 0}, max[3] = {0, 0, 0};  // header bounds

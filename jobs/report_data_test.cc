@@ -82,7 +82,7 @@ TEST(ReportDataTest, ScoresOlderThanTheCloudAreNotShown) {
   Write(dir / "run_report.json", kRunReport);
   Write(dir / "eval.json", kEval);
   std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  WriteCloud(dir / "fused.las");  // newer than eval.json
+  WriteCloud(dir / "fused.laz");  // newer than eval.json
   ReportData d = GatherReportData(config);
   EXPECT_TRUE(d.cloud.exists);
   EXPECT_EQ(d.cloud.points, 2u);
@@ -109,7 +109,7 @@ TEST(ReportDataTest, MissingOrCorruptFilesGiveWarningsNotExceptions) {
   EXPECT_GE(d.warnings.size(), 2u);
   Write(dir / "run_report.json", "{\"views\": [1, 2");  // truncated
   Write(dir / "eval.json", "garbage");
-  Write(dir / "fused.las", "LASF but not really");
+  Write(dir / "fused.laz", "LASF but not really");
   d = GatherReportData(config);
   EXPECT_FALSE(d.run.present);
   EXPECT_FALSE(d.eval.present);
@@ -118,7 +118,7 @@ TEST(ReportDataTest, MissingOrCorruptFilesGiveWarningsNotExceptions) {
   for (const auto& w : d.warnings) all += w + "\n";
   EXPECT_NE(all.find("run_report.json unreadable"), std::string::npos) << all;
   EXPECT_NE(all.find("eval.json unreadable"), std::string::npos) << all;
-  EXPECT_NE(all.find("fused.las unreadable"), std::string::npos) << all;
+  EXPECT_NE(all.find("fused.laz unreadable"), std::string::npos) << all;
 }
 
 TEST(ReportDataTest, TileStatesComeFromTheMarkers) {

@@ -81,7 +81,7 @@ std::string Warnings(const ReportData& d) {
   std::ostringstream s;
   if (!d.run.failed_tiles.empty()) {
     s << "<div class='warn'><b>" << d.run.failed_tiles.size()
-      << " tiles failed; fused.las was not merged.</b> See the tile map below and rerun them with "
+      << " tiles failed; " << d.cloud.name << " was not merged.</b> See the tile map below and rerun them with "
       << "<code>sacfuse run CONFIG --tiles ID,...</code>.</div>\n";
   }
   for (const std::string& w : d.warnings) s << "<div class='warn'>" << EscapeHtml(w) << "</div>\n";
@@ -93,7 +93,7 @@ std::string Summary(const ReportData& d) {
   const uint64_t in = PointsIn(d), out = PointsOut(d);
   s << "<div class='cards'>";
   s << Card(ShortCount(static_cast<double>(in)), "points in (valid depth pixels)");
-  s << Card(ShortCount(static_cast<double>(out)), "points out (fused.las)");
+  s << Card(ShortCount(static_cast<double>(out)), "points out (" + d.cloud.name + ")");
   if (in > 0) s << Card(Percent(RedundancyRemoved(in, out)), "redundancy removed (1 &minus; out/in)");
   s << Card(std::to_string(d.run.views.size()), "views");
   if (d.run.present) {
@@ -206,11 +206,11 @@ std::string MapSection(const ReportData& d, const ReportFigures& f, const std::v
   std::ostringstream s;
   s << "<h2>1. Source views of the fused cloud</h2>\n";
   if (!f.map.present) {
-    s << "<p class='note'>No map: " << (d.cloud.exists ? "the cloud has no points." : "there is no fused.las (yet).")
+    s << "<p class='note'>No map: " << (d.cloud.exists ? "the cloud has no points." : "there is no " + d.cloud.name + " (yet).")
       << "</p>\n";
     return s.str();
   }
-  s << "<p class='caption'>Top view of <code>fused.las</code>: each " << Fixed(f.map.cell_m, 2)
+  s << "<p class='caption'>Top view of <code>" << d.cloud.name << "</code>: each " << Fixed(f.map.cell_m, 2)
     << " m cell takes the colour of the view its topmost point came from (LAS point source ID), hill-shaded by that "
        "point's height (light from the north-west). Where a colour forms a patch, one view supplies that surface; "
        "speckle means several views still contribute points there. "
@@ -230,7 +230,7 @@ std::string HistogramSection(const ReportData& d, const std::vector<Rgb>& colour
     return s.str();
   }
   const size_t half = ViewsForHalfOfPoints(d.run.views);
-  s << "<p class='caption'>Per view: valid depth pixels (before, grey) and points of <code>fused.las</code> with "
+  s << "<p class='caption'>Per view: valid depth pixels (before, grey) and points of <code>" << d.cloud.name << "</code> with "
        "its source ID (after, in the view's colour), sorted by the after count. "
     << half << " of " << d.run.views.size() << " views supply half of the fused points.</p>\n";
   s << HistogramSvg(d.run.views, colours, 1140, 240) << "\n";
@@ -308,12 +308,12 @@ std::string ProfileSection(const ReportData& d, const ReportFigures& f) {
   }
   s << "<div>"
     << PanelSvg(p.after_file, p.frame,
-                "After: fused.las, " + GroupedInteger(p.after_in_strip) + " points" +
+                "After: " + d.cloud.name + ", " + GroupedInteger(p.after_in_strip) + " points" +
                     (p.after_drawn < p.after_in_strip ? " (" + GroupedInteger(p.after_drawn) + " drawn)" : ""))
     << "</div></div>\n";
   s << "<p class='caption'>Before: every valid depth pixel of the views that see the strip, back-projected; after: "
-       "the points of <code>fused.las</code>"
-    << (p.after_source != "fused.las" ? " (read from the " + EscapeHtml(p.after_source) + " under the strip)" : "")
+       "the points of <code>" + d.cloud.name + "</code>"
+    << (p.after_source != d.cloud.name ? " (read from the " + EscapeHtml(p.after_source) + " under the strip)" : "")
     << ". ";
   if (p.has_reference) {
     s << "Reference: " << GroupedInteger(p.reference_in_strip) << " points of <code>" << EscapeHtml(d.reference_path)
@@ -444,7 +444,7 @@ std::string NumbersSection(const ReportData& d, const ReportFigures& f) {
       << (d.eval.aligned ? Row("aligned", "robust ICP before scoring") : "") << "</table>"
       << "<div class='sub'>Density-normalised (per-voxel) scores of <code>eval.json</code>; see README, Evaluation.</div>";
   } else if (d.eval.stale) {
-    s << "<p class='note'>eval.json is older than fused.las, so its scores describe an earlier cloud and are not "
+    s << "<p class='note'>eval.json is older than " << d.cloud.name << ", so its scores describe an earlier cloud and are not "
          "shown; <code>sacfuse run</code> rescores (or run <code>sacfuse eval</code>, then <code>sacfuse report</code>).</p>";
   } else if (!d.reference_path.empty()) {
     s << "<p class='note'>Not scored yet (<code>eval.json</code> missing): the run scores after fusion and then "

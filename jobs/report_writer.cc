@@ -80,7 +80,7 @@ std::vector<std::string> AfterFiles(const ReportData& d, const JobConfig& config
       return files;
     }
   }
-  *source = "fused.las";
+  *source = d.cloud.name;
   return {d.cloud.path};
 }
 
@@ -191,7 +191,7 @@ ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {
     figures.profile_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - profile_start).count();
   } else {
-    figures.profile.reason = data.cloud.exists ? "fused.las has no points" : "no fused.las";
+    figures.profile.reason = data.cloud.exists ? data.cloud.name + " has no points" : "no " + data.cloud.name;
   }
   figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   figures.peak_rss_mib = PeakRssMiB();

@@ -203,6 +203,7 @@ LasWriterOptions MakeLasOptions(const OutputOptions& output) {
   LasWriterOptions o;
   o.version_minor = output.las_version == "1.2" ? 2 : 4;
   o.scale_m = output.scale_m;
+  o.compressed = output.format == "laz";
   o.generating_software = VersionString();
   return o;
 }

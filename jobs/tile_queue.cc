@@ -33,9 +33,16 @@ std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* r
   return input;
 }
 
-LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
+// The merged cloud's options (output.format); tiles are written with compressed = false (intermediate files).
+LasWriterOptions FusedCloudOptions(const JobConfig& config, const TilePlan& plan) {
   LasWriterOptions las = MakeLasOptions(config);
   las.offset = SharedTileOffset(plan);
+  return las;
+}
+
+LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
+  LasWriterOptions las = FusedCloudOptions(config, plan);
+  las.compressed = false;
   return las;
 }
 
@@ -96,7 +103,7 @@ MergeJobOutcome MergeJob(const JobConfig& given) {
   out.fused_las_path = FusedLasPath(config);
   out.missing = MissingTiles(config, plan);
   if (!out.missing.empty()) return out;
-  out.merged = MergeTiledRun(config, plan, TileLasOptions(config, plan), out.fused_las_path);
+  out.merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), out.fused_las_path);
   return out;
 }
 

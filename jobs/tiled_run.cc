@@ -158,7 +158,9 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
     const size_t claims = RemoveStaleTileClaims(tiles_dir, claim_timeout_s);
     if (claims > 0) spdlog::info("removed {} stale tile claims left by killed workers", claims);
   }
-  las_options.offset = SharedTileOffset(plan);
+  las_options.offset = SharedTileOffset(plan);  // the merged cloud's: output.format
+  LasWriterOptions tile_las = las_options;       // tiles stay uncompressed LAS (intermediate files)
+  tile_las.compressed = false;
   const std::string hash = ResultSettingsHash(config);
 
   TiledRunOutcome out;
@@ -181,7 +183,7 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
       todo.push_back(&tile);
     }
   }
-  RecordTiledRunState(config, plan, las_options, todo.size());
+  RecordTiledRunState(config, plan, tile_las, todo.size());
 
   if (!todo.empty()) {
     std::error_code ec;
@@ -205,7 +207,7 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   MemoryAdmission admission(TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   std::mutex mutex;  // guards out and progress across tile workers
-  const TileJob job{config, input, plan, las_options, tiles_dir, hash};
+  const TileJob job{config, input, plan, tile_las, tiles_dir, hash};
   // Works on one tile; false when another live worker holds it.
   const auto attempt = [&](const PlannedTile& tile, bool forced) {
     const TileWorkOutcome r = WorkOnTile(job, tile, forced, &admission, &cluster_cache);

@@ -1,5 +1,5 @@
 // End-to-end: the sacfuse binary as a user runs it — simulate a block, fuse it (union and SAC), score it; bad
-// configs and corrupt inputs fail with clear messages and leave no partial fused.las.
+// configs and corrupt inputs fail with clear messages and leave no partial fused.laz.
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -54,12 +54,12 @@ TEST_F(CliEndToEndTest, SacBeatsTheUnionOnF1WithFewerPoints) {
   EXPECT_NE(out.find("F1 @"), std::string::npos) << out;
   const fs::path u = Dir() / "union", s = Dir() / "sac";
   for (const fs::path& d : {u, s}) {
-    for (const char* f : {"fused.las", "sacfuse.effective.yaml", "run_report.json", "eval.json", "sacfuse.log"}) {
+    for (const char* f : {"fused.laz", "sacfuse.effective.yaml", "run_report.json", "eval.json", "sacfuse.log"}) {
       EXPECT_TRUE(fs::exists(d / f)) << (d / f);
     }
   }
-  const uint64_t union_points = LasReader((u / "fused.las").string()).header().point_count;
-  const uint64_t sac_points = LasReader((s / "fused.las").string()).header().point_count;
+  const uint64_t union_points = LasReader((u / "fused.laz").string()).header().point_count;
+  const uint64_t sac_points = LasReader((s / "fused.laz").string()).header().point_count;
   EXPECT_LT(sac_points, union_points * 85 / 100) << "SAC must remove at least 15% of the union's points";
   for (size_t t = 0; t < 2; ++t) {
     EXPECT_GT(F1FromJson(s / "eval.json", t), F1FromJson(u / "eval.json", t)) << "threshold " << t;
@@ -87,7 +87,7 @@ TEST(CliLidarTest, SacBeatsTheUnionOnALidarBlock) {
                           << "evaluation: {reference: " << (dir / "block" / "reference.las").string()
                           << ", mask: " << (dir / "block" / "eval_mask.png").string() << ", gsd_m: 0.2}\n";
     ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
-    results[method] = {LasReader((dir / method / "fused.las").string()).header().point_count,
+    results[method] = {LasReader((dir / method / "fused.laz").string()).header().point_count,
                        {F1FromJson(dir / method / "eval.json", 0), F1FromJson(dir / method / "eval.json", 1)}};
   }
   EXPECT_LT(results["sac"].first, results["union"].first * 85 / 100);
@@ -115,12 +115,12 @@ TEST_F(CliEndToEndTest, SuperpixelsAreReusedOnASecondRun) {
   std::string first, second;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &first), 0) << first;
   EXPECT_NE(first.find("0 reused"), std::string::npos) << first;
-  fs::copy_file(Dir() / "rerun" / "fused.las", Dir() / "first.las");
+  fs::copy_file(Dir() / "rerun" / "fused.laz", Dir() / "first.las");
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &second), 0) << second;
   EXPECT_NE(second.find("0 computed"), std::string::npos) << second;
   // Same result both times, byte for byte.
   EXPECT_EQ(testing::ReadFileBytes(Dir() / "first.las"),
-            testing::ReadFileBytes(Dir() / "rerun" / "fused.las"));
+            testing::ReadFileBytes(Dir() / "rerun" / "fused.laz"));
 }
 
 TEST_F(CliEndToEndTest, ConfigErrorsExitTwoAndNameKeyAndLine) {
@@ -150,7 +150,7 @@ TEST_F(CliEndToEndTest, CorruptDepthMapFailsNamingTheFileAndLeavesNoLas) {
   std::string out;
   EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 1) << out;
   EXPECT_NE(out.find(victim.filename().string()), std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(Dir() / "corrupt_out" / "fused.las"));
+  EXPECT_FALSE(fs::exists(Dir() / "corrupt_out" / "fused.laz"));
   for (const auto& e : fs::directory_iterator(Dir() / "corrupt_out")) {
     EXPECT_EQ(e.path().filename().string().find(".tmp-"), std::string::npos) << "temporary file left: " << e.path();
   }
@@ -160,7 +160,7 @@ TEST_F(CliEndToEndTest, EvalCommandPrintsATableAndJson) {
   std::string out;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(WriteConfig("for_eval", "union")), &out), 0) << out;
   const fs::path json = Dir() / "eval_cmd.json";
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(Dir() / "for_eval" / "fused.las") + " --reference " +
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(Dir() / "for_eval" / "fused.laz") + " --reference " +
                            ShellQuote(Block() / "reference.las") + " --gsd 0.1 --tau-gsd 2,5 --json " + ShellQuote(json),
                        &out),
             0)

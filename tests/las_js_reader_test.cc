@@ -351,7 +351,7 @@ class LasJsRunTest : public testing::TinyBlockSuite {
 TEST_F(LasJsRunTest, TiledLas14RunWithCrsIsReadByLoadersGl) {
   REQUIRE_READER();
   std::string out;
-  const fs::path config = WriteConfig("run14", "", "tiling: {tile_size_m: 30}\n");
+  const fs::path config = WriteConfig("run14", ", format: las", "tiling: {tile_size_m: 30}\n");
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
   const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
   CheckFile(Out("run14") / "fused.las", crs, 4);
@@ -369,9 +369,42 @@ TEST_F(LasJsRunTest, TiledLas14RunWithCrsIsReadByLoadersGl) {
 TEST_F(LasJsRunTest, Las12RunWithCrsIsReadByLoadersGl) {
   REQUIRE_READER();
   std::string out;
-  const fs::path config = WriteConfig("run12", ", las_version: \"1.2\"", "");
+  const fs::path config = WriteConfig("run12", ", las_version: \"1.2\", format: las", "");
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
   CheckFile(Out("run12") / "fused.las", ParseProjectCrs("EPSG:25832"), 2);
+}
+
+// The default output, DIR/fused.laz (tiled: merged from tiles), is decoded by laz-perf and laz-rs to exactly the
+// point records of the same run written as LAS, for LAS 1.4 and 1.2.
+TEST_F(LasJsRunTest, DefaultFusedLazDecodesToTheRecordsOfTheLasRun) {
+  REQUIRE_READER();
+  for (const char* version : {"1.4", "1.2"}) {
+    SCOPED_TRACE(version);
+    const std::string v = std::string(", las_version: \"") + version + "\"";
+    const std::string laz_run = std::string("default_laz_") + version, las_run = std::string("as_las_") + version;
+    std::string out;
+    const fs::path laz_config = WriteConfig(laz_run, v, "tiling: {tile_size_m: 30}\n");
+    const fs::path las_config = WriteConfig(las_run, v + ", format: las", "tiling: {tile_size_m: 30}\n");
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(laz_config), &out), 0) << out;
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(las_config), &out), 0) << out;
+    const fs::path laz = Out(laz_run) / "fused.laz";
+    ASSERT_TRUE(fs::exists(laz));
+    EXPECT_FALSE(fs::exists(Out(laz_run) / "fused.las"));
+    const std::string expected = LasPointRecords(Out(las_run) / "fused.las");
+    const json seen = DecodeLaz(laz);
+    for (const char* decoder : {"laz-perf", "laz-rs"}) {
+      const json& d = seen.at("decoders").at(decoder);
+      ASSERT_FALSE(d.contains("error")) << decoder << ": " << d.value("error", "");
+      const std::string got = testing::ReadFileBytes(laz.string() + "." + decoder + ".bin");
+      EXPECT_GT(got.size(), 0u);
+      EXPECT_TRUE(got == expected) << decoder << " decoded other records than the LAS run's";
+    }
+    // Our own reader too (merge, eval, report and validate read it).
+    EXPECT_EQ(ReadAllLasPoints(laz.string()).size(), ReadAllLasPoints((Out(las_run) / "fused.las").string()).size());
+    std::printf("[ las_js   ] run LAS %s: fused.laz %ju bytes, fused.las %ju bytes; laz-perf and laz-rs agree\n",
+                version, static_cast<uintmax_t>(fs::file_size(laz)),
+                static_cast<uintmax_t>(fs::file_size(Out(las_run) / "fused.las")));
+  }
 }
 
 }  // namespace

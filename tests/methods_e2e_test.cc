@@ -85,7 +85,7 @@ TEST_F(MethodsEndToEndTest, EveryMethodWritesAValidScoredLasWithSourceIdsUntiled
       const RunResult& r = Result(name);
       ASSERT_EQ(r.exit_code, 0) << name << ":\n" << r.output;
       LasHeader header;
-      const std::vector<LasPoint> points = ReadAllLasPoints((Out(name) / "fused.las").string(), &header);
+      const std::vector<LasPoint> points = ReadAllLasPoints((Out(name) / "fused.laz").string(), &header);
       EXPECT_GT(points.size(), 5000u) << name;
       EXPECT_EQ(points.size(), header.point_count) << name;
       std::vector<size_t> per_source(views + 1, 0);
@@ -132,8 +132,8 @@ TEST_F(MethodsEndToEndTest, TiledAgreesWithUntiledWithoutDuplicatesAlongTileBord
     const std::string u = Name(method, false), t = Name(method, true);
     ASSERT_EQ(Result(u).exit_code, 0) << Result(u).output;
     ASSERT_EQ(Result(t).exit_code, 0) << Result(t).output;
-    const std::vector<LasPoint> untiled = ReadAllLasPoints((Out(u) / "fused.las").string());
-    const std::vector<LasPoint> tiled = ReadAllLasPoints((Out(t) / "fused.las").string());
+    const std::vector<LasPoint> untiled = ReadAllLasPoints((Out(u) / "fused.laz").string());
+    const std::vector<LasPoint> tiled = ReadAllLasPoints((Out(t) / "fused.laz").string());
     // No point twice (quantised XYZ + source id).
     std::vector<std::tuple<int64_t, int64_t, int64_t, uint16_t>> keys;
     for (const LasPoint& p : tiled) {
@@ -180,8 +180,8 @@ TEST_F(MethodsEndToEndTest, TileWorkersThenMergeGiveTheCloudOfAPlainRun) {
   ASSERT_EQ(RunCommand(SacfuseBinary() + " merge " + ShellQuote(Config("workers_tiles")), &out), 0) << out;
   EXPECT_GT(testing::CountFilesNamedWith(Out("workers_tiles") / "tiles", ".done.json"), 3u);
   EXPECT_EQ(testing::CountFilesNamedWith(Out("workers_tiles"), ".spx"), 0u);
-  EXPECT_TRUE(testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("workers_tiles") / "fused.las")) ==
-              testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("workers_run") / "fused.las")))
+  EXPECT_TRUE(testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("workers_tiles") / "fused.laz")) ==
+              testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("workers_run") / "fused.laz")))
       << "tile workers + merge differ from run";
 }
 
@@ -198,11 +198,11 @@ TEST_F(MethodsEndToEndTest, MethodsWithoutSuperpixelsComputeNoneButKeepTheColour
 
 TEST_F(MethodsEndToEndTest, TheUnionIsTheLeastAccurateAndTheFusionsKeepFewerPoints) {
   const std::string u = Name("union", false);
-  const uint64_t union_points = LasReader((Out(u) / "fused.las").string()).header().point_count;
+  const uint64_t union_points = LasReader((Out(u) / "fused.laz").string()).header().point_count;
   for (const std::string& method : kMethods) {
     if (method == "union") continue;
     const std::string m = Name(method, false);
-    const uint64_t points = LasReader((Out(m) / "fused.las").string()).header().point_count;
+    const uint64_t points = LasReader((Out(m) / "fused.laz").string()).header().point_count;
     std::printf("%-17s %9llu points, accuracy %.4f / %.4f, completeness %.4f / %.4f, F1 %.4f / %.4f\n",
                 method.c_str(), static_cast<unsigned long long>(points), Score(m, "accuracy", 0),
                 Score(m, "accuracy", 1), Score(m, "completeness", 0), Score(m, "completeness", 1), Score(m, "f1", 0),

@@ -106,7 +106,7 @@ TEST_F(OpenMvsInputEndToEndTest, ConvertWritesDmapsImagesAndAConfig) {
 TEST_F(OpenMvsInputEndToEndTest, UntiledRunGivesTheColmapCloud) {
   Run(Config("colmap_untiled"));
   Run(Converted() / "sacfuse.yaml");  // the config convert wrote: output in <converted>/out
-  ExpectSameCloud(Out("colmap_untiled") / "fused.las", Converted() / "out" / "fused.las", "untiled");
+  ExpectSameCloud(Out("colmap_untiled") / "fused.laz", Converted() / "out" / "fused.laz", "untiled");
 }
 
 TEST_F(OpenMvsInputEndToEndTest, TiledRunGivesTheColmapCloud) {
@@ -139,7 +139,7 @@ TEST_F(OpenMvsInputEndToEndTest, TiledRunGivesTheColmapCloud) {
     ASSERT_EQ(va.size(), vb.size()) << "tile " << t;
     for (size_t v = 0; v < va.size(); ++v) EXPECT_EQ(va[v].at("window"), vb[v].at("window")) << "tile " << t;
   }
-  ExpectSameCloud(Out("colmap_tiled") / "fused.las", Out("openmvs_tiled") / "fused.las", "tiled (30 m)");
+  ExpectSameCloud(Out("colmap_tiled") / "fused.laz", Out("openmvs_tiled") / "fused.laz", "tiled (30 m)");
 }
 
 TEST_F(OpenMvsInputEndToEndTest, CorruptDmapFailsTheRunNamingTheFile) {
@@ -155,7 +155,7 @@ TEST_F(OpenMvsInputEndToEndTest, CorruptDmapFailsTheRunNamingTheFile) {
             1)
       << out;
   EXPECT_NE(out.find(bad.string() + ": truncated depth map"), std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(Out("corrupt") / "fused.las"));
+  EXPECT_FALSE(fs::exists(Out("corrupt") / "fused.laz"));
 }
 
 }  // namespace

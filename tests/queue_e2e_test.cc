@@ -1,5 +1,5 @@
 // End-to-end: the tile list as a work queue (simulate --preset tiny --seed 3, 20 m tiles, 5 m halo).
-// (a) `plan --list | parallel -j 3 sacfuse tile --id {}` then `merge` gives the fused.las of a plain `run` (bytes
+// (a) `plan --list | parallel -j 3 sacfuse tile --id {}` then `merge` gives the fused.laz of a plain `run` (bytes
 // equal except the header's creation date); (b) no tile is computed twice and no claim file is left; (c) the same
 // `tile --id` twice at once computes it once; (d) `merge` before the tiles are done exits 1 naming a missing
 // tile; (e) `run` and `tile` workers mixed on one DIR compute every tile once and give the same cloud.
@@ -60,7 +60,7 @@ class QueueEndToEndTest : public testing::TinyBlockSuite {
                                   << "tiling: {tile_size_m: 20, halo_m: 5}\n";
     }
     ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("ref")), &out), 0) << out;
-    reference_ = WithoutLasCreationDate(ReadFileBytes(Out("ref") / "fused.las"));
+    reference_ = WithoutLasCreationDate(ReadFileBytes(Out("ref") / "fused.laz"));
     ASSERT_EQ(RunCommand(SacfuseBinary() + " plan --list " + ShellQuote(Config("early")) + " 2>/dev/null", &out), 0);
     ids_ = Lines(out);
   }
@@ -74,8 +74,8 @@ class QueueEndToEndTest : public testing::TinyBlockSuite {
     EXPECT_EQ(CountFilesNamedWith(Out(name) / "tiles", ".done.json"), ids_.size());
     EXPECT_EQ(CountFilesNamedWith(Out(name) / "tiles", ".claim"), 0u);
     EXPECT_EQ(CountFilesNamedWith(Out(name), ".tmp-"), 0u);
-    EXPECT_TRUE(WithoutLasCreationDate(ReadFileBytes(Out(name) / "fused.las")) == reference_)
-        << "fused.las differs from the plain run's";
+    EXPECT_TRUE(WithoutLasCreationDate(ReadFileBytes(Out(name) / "fused.laz")) == reference_)
+        << "fused.laz differs from the plain run's";
   }
   static inline std::string reference_;
   static inline std::vector<std::string> ids_;
@@ -121,7 +121,7 @@ TEST_F(QueueEndToEndTest, MergeBeforeAllTilesAreDoneExits1NamingMissingTile) {
   EXPECT_NE(out.find("Missing:"), std::string::npos) << out;
   EXPECT_NE(out.find(" " + ids_.back()), std::string::npos) << out;
   EXPECT_EQ(out.find(" " + ids_.front() + " "), std::string::npos) << out;  // that one is done
-  EXPECT_FALSE(fs::exists(Out("early") / "fused.las"));
+  EXPECT_FALSE(fs::exists(Out("early") / "fused.laz"));
 }
 
 TEST_F(QueueEndToEndTest, RunAndTileWorkersMixed) {

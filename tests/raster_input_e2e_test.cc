@@ -121,7 +121,7 @@ class RasterInputEndToEndTest : public testing::TinyBlockSuite {
     const auto [untiled, tiled] = RunConverted(converted);
     for (const auto& [ref, got] :
          {std::pair{Out(RunName(reference, 0)), untiled}, std::pair{Out(RunName(reference, kTileSizeM)), tiled}}) {
-      const CloudDiff d = CompareClouds(ref / "fused.las", got / "fused.las", tol_quanta);
+      const CloudDiff d = CompareClouds(ref / "fused.laz", got / "fused.laz", tol_quanta);
       std::cout << "[ raster e2e ] " << got << " vs " << ref << ": " << d.count_b << " / " << d.count_a << " points, "
                 << d.moved << " moved, max " << d.max_diff_quanta << " quanta\n";
       EXPECT_GT(d.count_a, 100000u);
@@ -155,13 +155,13 @@ TEST_F(RasterInputEndToEndTest, CsvRotationMatricesAndRangeDepthsFuseToTheSamePo
   EXPECT_NE(header.find("focal_mm,pixel_size_um,ppx_mm,ppy_mm"), std::string::npos) << header;
   EXPECT_NE(header.find("r11,r12,r13"), std::string::npos) << header;
   const auto [untiled, tiled] = RunConverted(dir);
-  const CloudDiff d = CompareClouds(Out("colmap") / "fused.las", untiled / "fused.las", 2.0);
+  const CloudDiff d = CompareClouds(Out("colmap") / "fused.laz", untiled / "fused.laz", 2.0);
   std::cout << "[ raster e2e ] csv untiled: " << d.count_b << " / " << d.count_a << " points, " << d.moved
             << " moved, max " << d.max_diff_quanta << " quanta\n";
   EXPECT_EQ(d.count_b, d.count_a);
   EXPECT_EQ(d.mismatched, 0u) << d.moved << " moved, max " << d.max_diff_quanta;
-  const size_t ref = ReadAllLasPoints((Out("colmap_tiled") / "fused.las").string()).size();
-  const size_t got = ReadAllLasPoints((tiled / "fused.las").string()).size();
+  const size_t ref = ReadAllLasPoints((Out("colmap_tiled") / "fused.laz").string()).size();
+  const size_t got = ReadAllLasPoints((tiled / "fused.laz").string()).size();
   std::cout << "[ raster e2e ] csv tiled (own height range): " << got << " / " << ref << " points\n";
   EXPECT_NEAR(static_cast<double>(got), static_cast<double>(ref), 0.005 * ref);
 }
@@ -192,7 +192,7 @@ TEST_F(RasterInputEndToEndTest, HalfSizeDepthRastersFuseToTheSamePoints) {
   ExpectSameClouds("colmap_half", dir, 1.0);
 }
 
-// A corrupt depth TIFF fails the run naming the file, and leaves no fused.las.
+// A corrupt depth TIFF fails the run naming the file, and leaves no fused.laz.
 TEST_F(RasterInputEndToEndTest, CorruptDepthRasterFailsNamingTheFile) {
   const fs::path dir = Convert("colmap", "rasters", "rasters_corrupt");
   fs::path victim;
@@ -204,7 +204,7 @@ TEST_F(RasterInputEndToEndTest, CorruptDepthRasterFailsNamingTheFile) {
   std::string out;
   EXPECT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(dir / "sacfuse.yaml"), &out), 1) << out;
   EXPECT_NE(out.find(victim.filename().string()), std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(dir / "out" / "fused.las"));
+  EXPECT_FALSE(fs::exists(dir / "out" / "fused.laz"));
 }
 
 }  // namespace

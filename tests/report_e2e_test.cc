@@ -171,11 +171,11 @@ TEST_F(ReportEndToEndTest, CorruptRunFilesGiveAPageWithWarnings) {
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
   ExpectSelfContained(dir / "report");
   std::ofstream(dir / "run_report.json") << "{\"views\": [";      // truncated
-  fs::resize_file(dir / "fused.las", 200);                           // header only, cut short
+  fs::resize_file(dir / "fused.laz", 200);                           // header only, cut short
   ASSERT_EQ(RunCommand(SacfuseBinary() + " report " + ShellQuote(config), &out), 0) << out;
   const std::string html = Page(dir / "report");
   EXPECT_NE(html.find("run_report.json unreadable"), std::string::npos);
-  EXPECT_NE(html.find("fused.las unreadable"), std::string::npos);
+  EXPECT_NE(html.find("fused.laz unreadable"), std::string::npos);
   EXPECT_NE(html.find("No map"), std::string::npos);
   // No output folder at all: exit 1 naming it.
   std::ofstream(Config("nowhere")) << "input: {path: " << Block().string() << "}\noutput: {dir: "
@@ -203,7 +203,7 @@ TEST_F(ReportEndToEndTest, UnreadableDepthMapsCostOnlyTheBeforePanel) {
   ASSERT_EQ(RunCommand(SacfuseBinary() + " report " + ShellQuote(config), &out), 0) << out;
   const std::string html = Page(Out("depth_gone") / "report");
   EXPECT_NE(html.find("no &#39;before&#39; cross-section"), std::string::npos);
-  EXPECT_NE(html.find("After: fused.las"), std::string::npos);  // the other panel and the map are there
+  EXPECT_NE(html.find("After: fused.laz"), std::string::npos);  // the other panel and the map are there
   EXPECT_EQ(html.find("profile_before.png"), std::string::npos);
   EXPECT_NE(html.find("map.png"), std::string::npos);
 }
@@ -218,7 +218,7 @@ TEST_F(ReportEndToEndTest, AReportThatCannotBeWrittenDoesNotFailTheRun) {
                        &out),
             0)
       << out;
-  EXPECT_TRUE(fs::exists(dir / "fused.las"));
+  EXPECT_TRUE(fs::exists(dir / "fused.laz"));
   EXPECT_NE(out.find("the HTML report was not written"), std::string::npos) << out;
 }
 

@@ -1,6 +1,6 @@
 // End-to-end: per-tile outputs and resume of a tiled run (simulate --preset tiny, 20 m tiles, 5 m halo).
 // (a) an uninterrupted run; (b) three kill -9 at random moments, then a run to completion, gives the same
-// fused.las (bytes equal except the header's creation date) and leaves no "*.tmp-*" file; (c) --tiles reruns
+// fused.laz (bytes equal except the header's creation date) and leaves no "*.tmp-*" file; (c) --tiles reruns
 // only the named tile; (d) status lists every tile done, and a tile whose LAS was deleted as pending; (e) a
 // truncated tile LAS is recomputed by the next run; (f) a failing tile is recorded and the others go on.
 #include <chrono>
@@ -61,7 +61,7 @@ class ResumeEndToEndTest : public testing::TinyBlockSuite {
     const auto t0 = std::chrono::steady_clock::now();
     ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("a")), &out), 0) << out;
     run_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    reference_ = WithoutLasCreationDate(ReadFileBytes(Out("a") / "fused.las"));
+    reference_ = WithoutLasCreationDate(ReadFileBytes(Out("a") / "fused.laz"));
   }
   static fs::path Tiles(const std::string& name) { return Out(name) / "tiles"; }
   static std::string Run(const std::string& name, const std::string& extra, int* code) {
@@ -70,10 +70,10 @@ class ResumeEndToEndTest : public testing::TinyBlockSuite {
     return out;
   }
   static void ExpectFusedMatchesReference(const std::string& name) {
-    const std::string fused = WithoutLasCreationDate(ReadFileBytes(Out(name) / "fused.las"));
+    const std::string fused = WithoutLasCreationDate(ReadFileBytes(Out(name) / "fused.laz"));
     EXPECT_GT(reference_.size(), 100000u);
     EXPECT_EQ(fused.size(), reference_.size());
-    EXPECT_TRUE(fused == reference_) << name << "/fused.las differs from the uninterrupted run's";
+    EXPECT_TRUE(fused == reference_) << name << "/fused.laz differs from the uninterrupted run's";
   }
 
   static inline std::string reference_;
@@ -200,7 +200,7 @@ TEST_F(ResumeEndToEndTest, FailedTileIsRecordedAndTheOthersGoOn) {
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("sacfuse run " + Config("a").string() + " --tiles " + id), std::string::npos) << out;
   EXPECT_TRUE(fs::exists(Tiles("a") / (id + ".failed.json")));
-  EXPECT_FALSE(fs::exists(Out("a") / "fused.las"));
+  EXPECT_FALSE(fs::exists(Out("a") / "fused.laz"));
   ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
   EXPECT_NE(out.find("failed   " + id + ": "), std::string::npos) << out;
   fs::remove_all(las);

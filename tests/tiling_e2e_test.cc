@@ -91,8 +91,8 @@ TEST_F(TilingEndToEndTest, TiledRunStitchesWithoutSeamsAndMatchesUntiled) {
   const nlohmann::json plan = ReadJson(Out("tiled") / "plan.json");
   EXPECT_GT(ReadJson(Out("tiled") / "run_report.json").at("tiling").at("tiles_run").get<int>(), 4);
 
-  const std::vector<LasPoint> tiled = ReadAllLasPoints((Out("tiled") / "fused.las").string());
-  const uint64_t untiled_count = LasReader((Out("untiled") / "fused.las").string()).header().point_count;
+  const std::vector<LasPoint> tiled = ReadAllLasPoints((Out("tiled") / "fused.laz").string());
+  const uint64_t untiled_count = LasReader((Out("untiled") / "fused.laz").string()).header().point_count;
   ASSERT_GT(tiled.size(), 1000u);
 
   // (b) Every XY in exactly one half-open tile core; (a) no duplicates (quantised XYZ + source ID), counting
@@ -154,8 +154,8 @@ TEST_F(TilingEndToEndTest, BudgetSizesTilesAndThreadsDoNotChangeTheOutput) {
     EXPECT_LT(report.at("peak_rss_mib").get<double>(), 0.15 * 1024) << name;
   }
   // One or two tile workers: the same tiles, the same bytes (but for the header's creation date).
-  EXPECT_EQ(testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("auto_t1") / "fused.las")),
-            testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("auto_t2") / "fused.las")));
+  EXPECT_EQ(testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("auto_t1") / "fused.laz")),
+            testing::WithoutLasCreationDate(testing::ReadFileBytes(Out("auto_t2") / "fused.laz")));
 }
 
 TEST_F(TilingEndToEndTest, TilesOverTheBudgetFailWithTheOutOfMemoryGuard) {
@@ -163,7 +163,7 @@ TEST_F(TilingEndToEndTest, TilesOverTheBudgetFailWithTheOutOfMemoryGuard) {
   const int code = RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("guard")), &out);
   EXPECT_NE(code, 0) << out;
   EXPECT_NE(out.find("out-of-memory guard"), std::string::npos) << out;
-  EXPECT_FALSE(fs::exists(Out("guard") / "fused.las"));
+  EXPECT_FALSE(fs::exists(Out("guard") / "fused.laz"));
   ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("guard")), &out), 0) << out;
   EXPECT_NE(out.find("out-of-memory guard"), std::string::npos) << out;
 }

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One command for a fresh Debian machine: install dependencies, build, simulate the demo block, fuse it, score it.
-# Outputs go to build/demo/: block/ (the simulated COLMAP workspace), out/fused.las, out/eval.json.
+# Outputs go to build/demo/: block/ (the simulated COLMAP workspace), out/fused.laz, out/eval.json.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install_deps.sh
@@ -12,4 +12,4 @@ if [ ! -f "$demo/block/metadata.json" ]; then
 fi
 "$bin" run tools/demo/demo.yaml
 echo
-echo "demo: fused cloud at $demo/out/fused.las; scores in $demo/out/eval.json"
+echo "demo: fused cloud at $demo/out/fused.laz; scores in $demo/out/eval.json"

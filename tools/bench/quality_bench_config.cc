@@ -65,6 +65,7 @@ std::string MakeRowConfig(const RowConfigRequest& request) {
   MakeAbsolute(root, "fusion", "superpixel_cache_dir", base);
   if (root["output"] && !root["output"].IsMap()) throw InputError(request.block_config, "output is not a mapping");
   root["output"]["dir"] = fs::absolute(request.output_dir).lexically_normal().string();  // a string, never parsed
+  root["output"]["format"] = "las";  // uncompressed: what the bench's scorers (ours and aerial-bench's) read fastest
   if (!request.keep_evaluation) root.remove("evaluation");
   for (const auto& [key, value] : request.overrides) SetDotted(root, key, value, key);
   YAML::Emitter out;
