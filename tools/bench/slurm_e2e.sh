@@ -12,7 +12,8 @@
 # script uses them). Runs as root: slurmd must, and the jobs run as the submitting user.
 # Environment: SACFUSE_BIN (default: build/bin/sacfuse of this repository, else `sacfuse` on PATH);
 #   SLURM_E2E_TIMEOUT_S (default 900) for the jobs; SLURM_E2E_TILE_M (default 20) the tile size;
-#   SLURM_E2E_PORT (default 6817; slurmd uses the next port) when those ports are taken.
+#   SLURM_E2E_PORT (default 6817; slurmd uses the next port) when those ports are taken;
+#   SLURM_E2E_BASELINE=1 first times an array of as many `true` tasks (SLURM's own per-task cost on this machine).
 # Exit: 0 PASS, 1 FAIL (jobs failed, timed out, or the clouds differ), 2 setup error (cluster did not come up).
 set -euo pipefail
 REPO="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -151,12 +152,33 @@ EOF
 done
 CONFIG="$B/slurm.yaml"
 
+# Waits until none of the jobs (comma-separated ids) is queued or running; after TIMEOUT_S cancels them and fails.
+wait_jobs() {
+  local deadline=$(( $(date +%s) + TIMEOUT_S ))
+  while squeue -h -j "$1" -o '%i' 2>/dev/null | grep -q .; do
+    if [ "$(date +%s)" -ge "$deadline" ]; then
+      echo "FAIL: jobs still queued or running after ${TIMEOUT_S} s:" >&2
+      squeue -j "$1" >&2 || true
+      scancel ${1//,/ } 2>/dev/null || true
+      exit 1
+    fi
+    sleep 1
+  done
+}
+seconds_since() { python3 -c "import sys, time; print(f'{time.time() - float(sys.argv[1]):.1f}')" "$1"; }
+
 # --- submit as tools/slurm_array_example.sh's header says (smaller per-task resources for this node) ------------
 cd "$W"
 mkdir -p logs
 cd logs
 N=$(sacfuse plan "$CONFIG" --list | wc -l)
 if [ "$N" -lt 2 ]; then echo "slurm_e2e: the plan has $N tiles; expected several" >&2; exit 1; fi
+if [ "${SLURM_E2E_BASELINE:-0}" = 1 ]; then
+  tb=$(date +%s.%N)
+  BASE=$(sbatch --parsable --array=0-$((N - 1)) --cpus-per-task=1 --mem=1G --output=/dev/null --wrap true)
+  wait_jobs "${BASE%%;*}"
+  log "baseline: an array of $N \`true\` tasks took $(seconds_since "$tb") s from submission to the last one's end"
+fi
 t0=$(date +%s.%N)
 JOB=$(sbatch --parsable --array=0-$((N - 1)) --cpus-per-task=1 --mem=1G --export=ALL,CONFIG="$CONFIG" \
   "$REPO/tools/slurm_array_example.sh")
@@ -166,17 +188,8 @@ MERGE=$(sbatch --parsable --dependency=afterany:"$JOB" --cpus-per-task=1 --mem=2
 MERGE="${MERGE%%;*}"
 log "submitted array job $JOB (tasks 0-$((N - 1)), $N tiles) and merge job $MERGE (afterany:$JOB)"
 
-deadline=$(( $(date +%s) + TIMEOUT_S ))
-while squeue -h -j "$JOB,$MERGE" -o '%i' 2>/dev/null | grep -q .; do
-  if [ "$(date +%s)" -ge "$deadline" ]; then
-    echo "FAIL: jobs still queued or running after ${TIMEOUT_S} s:" >&2
-    squeue -j "$JOB,$MERGE" >&2 || true
-    scancel "$JOB" "$MERGE" 2>/dev/null || true
-    exit 1
-  fi
-  sleep 1
-done
-slurm_s=$(python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" "$t0" "$(date +%s.%N)")
+wait_jobs "$JOB,$MERGE"
+slurm_s=$(seconds_since "$t0")
 
 # Final states from slurmctld (no accounting database; MinJobAge keeps ended jobs for 10 minutes).
 states="$(scontrol -o show job "$JOB" | grep -o 'JobState=[A-Z_]*' | sort | uniq -c | tr -s ' ' | tr '\n' ' ')"
@@ -189,7 +202,7 @@ log "array tasks: $states($array_ok of $N completed with exit 0); merge: $merge_
 # --- the same config with `sacfuse run` ------------------------------------------------------------------------
 t1=$(date +%s.%N)
 sacfuse run "$B/run.yaml" >"$W/run.log" 2>&1 || { echo "FAIL: sacfuse run failed (log: $W/run.log)"; exit 1; }
-run_s=$(python3 -c "import sys; print(f'{float(sys.argv[2]) - float(sys.argv[1]):.1f}')" "$t1" "$(date +%s.%N)")
+run_s=$(seconds_since "$t1")
 
 fail=0
 if [ "$array_ok" != "$N" ] || [ "$merge_state" != JobState=COMPLETED ] || [ "$merge_exit" != ExitCode=0:0 ]; then
