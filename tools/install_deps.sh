@@ -1,8 +1,21 @@
 #!/usr/bin/env bash
-# Installs every Debian package sacfuse needs to build and test. Idempotent; run as root (or with sudo).
+# Installs the Debian packages sacfuse needs. Idempotent; run as root (or with sudo).
+#   tools/install_deps.sh          everything: --test, plus the optional benchmark packages (warn-only); CI runs this;
+#   tools/install_deps.sh --test   building and the whole test suite (tools/test.sh runs this first; with every
+#                                  package present it only checks, no apt-get and no sudo);
+#   tools/install_deps.sh --build  only what configuring, building and running sacfuse needs (tools/demo.sh): no
+#                                  Chromium, Node.js/npm, GNU parallel, COLMAP -- on a fresh Debian 12 these are most
+#                                  of the download and unpack time, and only the tests and benchmarks use them.
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+MODE=all
+case "${1:-}" in
+  --build) MODE=build ;;
+  --test) MODE=test ;;
+  "") ;;
+  *) echo "usage: tools/install_deps.sh [--build | --test]" >&2; exit 2 ;;
+esac
 PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev            # linear algebra, camera geometry
@@ -15,10 +28,13 @@ PKGS=(
   nlohmann-json3-dev       # metadata, reports
   libnanoflann-dev         # kd-trees (eval, correspondences)
   libtiff-dev              # depth rasters
-  libgtest-dev libgmock-dev # tests
+  libgtest-dev libgmock-dev # tests; CMake's configure looks for GoogleTest (SACFUSE_TESTS=ON), so --build has them
+)
+TEST_PKGS=(
   parallel                 # GNU parallel: running `sacfuse tile` workers (tests/queue_e2e_test.cc)
   chromium                 # tests only: headless screenshot of the HTML run report (tests/report_e2e_test.cc)
 )
+if [ "$MODE" != build ]; then PKGS+=("${TEST_PKGS[@]}"); fi
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -32,6 +48,7 @@ if [ ${#missing[@]} -gt 0 ]; then
 else
   echo "[install_deps] all packages present"
 fi
+if [ "$MODE" = build ]; then exit 0; fi
 
 # Optional, benchmarks only (tools/bench, `sacfuse colmap-fusion`, tools/bench/compare_colmap.sh): COLMAP's
 # stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports. Building and the
@@ -42,7 +59,7 @@ OPTIONAL_PKGS=(
   time                     # /usr/bin/time -v: wall time and peak RSS of `sacfuse run` in compare_colmap.sh
   jq                       # reading run_report.json / eval.json in compare_colmap.sh
 )
-if [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
+if [ "$MODE" = all ] && [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
   not_installed=()
   for p in "${OPTIONAL_PKGS[@]}"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || not_installed+=("$p")
