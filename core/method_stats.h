@@ -37,12 +37,13 @@ struct MethodStats {
     input_pixels += o.input_pixels;
     emitted += o.emitted;
     for (const auto& [name, n] : o.counters) Count(name, n);
-    for (const auto& [stage, secs] : o.stage_seconds) {
-      auto it = std::find_if(stage_seconds.begin(), stage_seconds.end(), [&](const auto& e) { return e.first == stage; });
+    for (const auto& entry : o.stage_seconds) {  // (not a structured binding: clang 14 cannot capture one)
+      auto it = std::find_if(stage_seconds.begin(), stage_seconds.end(),
+                             [&](const auto& e) { return e.first == entry.first; });
       if (it == stage_seconds.end()) {
-        stage_seconds.emplace_back(stage, secs);
+        stage_seconds.push_back(entry);
       } else {
-        it->second += secs;
+        it->second += entry.second;
       }
     }
   }
