@@ -155,8 +155,9 @@ OpenMvsBlock::OpenMvsBlock(const std::string& dir) : dir_(dir) {
     const std::string who = ForView(view.index, view.name);
     view.camera = PinholeFromDmap(header, path, who);
     view.cam_from_world = CamFromWorldFromDmap(header.camera, path, who);
-    CheckViewIntrinsics(view.camera, path, "view " + std::to_string(view.index) + " (" + view.name + ")");
-    CheckViewPose(view.cam_from_world, path, "view " + std::to_string(view.index) + " (" + view.name + ")");
+    const std::string view_text = "view " + std::to_string(view.index) + " (" + view.name + ")";
+    CheckViewIntrinsics(view.camera, path, view_text);
+    CheckViewPose(view.cam_from_world, path, view_text);
     std::string image = header.image_path;
     std::replace(image.begin(), image.end(), '\\', '/');  // written on Windows
     if (image.empty()) throw InputError(path, "the depth map names no image" + who);

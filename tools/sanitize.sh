@@ -19,14 +19,15 @@ command -v ccache >/dev/null && launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
 cmake -S . -B "$dir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSACFUSE_SANITIZE="$sanitize" "${launcher[@]}" > /dev/null
 jobs=${SACFUSE_SANITIZE_JOBS:-$(nproc 2>/dev/null || echo 2)}
 if [ -n "$regex" ]; then
-  # Only the test executables the regex selects (and the sacfuse binary the end-to-end tests run).
-  mapfile -t targets < <(ctest --test-dir "$dir" -N -R "$regex" 2>/dev/null | sed -n 's/^ *Test *#[0-9]*: //p' |
-    sed 's|^tests/|tests_|; s|/|_|g' | sort -u)
-  if [ ${#targets[@]} -eq 0 ]; then
-    cmake --build "$dir" -j"$jobs"  # first run: CTest knows the tests only after a build configured them
-  else
-    cmake --build "$dir" -j"$jobs" --target sacfuse "${targets[@]}"
+  # Only the test executables the regex selects, plus the sacfuse binary when an end-to-end test (tests/, tools/)
+  # is among them (they run it).
+  mapfile -t names < <(ctest --test-dir "$dir" -N -R "$regex" 2>/dev/null | sed -n 's/^ *Test *#[0-9]*: //p')
+  [ ${#names[@]} -gt 0 ] || { echo "sanitize: no test matches $regex" >&2; exit 2; }
+  mapfile -t targets < <(printf '%s\n' "${names[@]}" | sed 's|^tests/|tests_|; s|/|_|g' | sort -u)
+  if printf '%s\n' "${names[@]}" | grep -v '^tests/fuzz_regression_test$' | grep -q '^tests/\|^tools/'; then
+    targets+=(sacfuse)
   fi
+  cmake --build "$dir" -j"$jobs" --target "${targets[@]}"
   args=(-R "$regex")
 else
   cmake --build "$dir" -j"$jobs"
