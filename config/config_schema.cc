@@ -1,12 +1,15 @@
 #include "config/config_schema.h"
 
+#include <cmath>
 #include <iomanip>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include <yaml-cpp/yaml.h>
 
 #include "core/error.h"
+#include "io/yaml_keys.h"
 
 namespace sacfuse {
 namespace {
@@ -37,14 +40,29 @@ std::string Quote(const std::string& s) {
   return out + "\"";
 }
 
+// A broken rule on a value, as ParseMap prints it after the key: "<key> = <value as written>: <rule>".
+std::string RuleBroken(const YAML::Node& n, const std::string& rule) { return "= " + n.Scalar() + ": " + rule; }
+
 template <typename T>
 std::string ScalarAs(const YAML::Node& n, T* out, const char* type_name) {
   if (!n.IsScalar()) return std::string("expected ") + type_name + ", got " + NodeKind(n);
+  T value{};
   try {
-    *out = n.as<T>();
+    value = n.as<T>();
   } catch (const YAML::Exception&) {
     return std::string("expected ") + type_name + ", got " + NodeKind(n);
   }
+  // The one rule every number of every config obeys, whatever its key: finite (no .inf, -.inf, .nan) and of a
+  // magnitude no sacfuse setting needs to exceed (coordinates, sizes, budgets; each key's own range is checked
+  // by its validator on top).
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+    const double v = static_cast<double>(value);
+    if (!std::isfinite(v)) return RuleBroken(n, "must be a finite number");
+    if (std::abs(v) > kMaxConfigMagnitude) {
+      return RuleBroken(n, "must be a finite number in [-1e9, 1e9]");
+    }
+  }
+  *out = value;
   return "";
 }
 
@@ -130,13 +148,25 @@ const ConfigSchema::Entry* ConfigSchema::Find(const std::string& key) const {
 
 void ConfigSchema::ParseMap(const YAML::Node& node, const std::string& prefix, const std::string& source,
                             std::vector<std::string>* errors, std::map<std::string, int>* key_lines) const {
+  std::set<size_t> repeats;
+  for (const YamlRepeatedKey& r : RepeatedYamlKeys(node)) {
+    const std::string key = prefix.empty() ? r.key : prefix + "." + r.key;
+    errors->push_back(source + ":" + std::to_string(r.line) + ": " + key + ": " + RepeatedYamlKeyProblem(r));
+    repeats.insert(r.index);
+  }
+  size_t index = 0;
   for (const auto& kv : node) {
+    const int line = kv.first.Mark().line + 1;
+    if (repeats.count(index++) != 0) continue;  // reported above; the first occurrence is parsed
     const std::string name = kv.first.Scalar();
     const std::string key = prefix.empty() ? name : prefix + "." + name;
-    if (key_lines != nullptr) (*key_lines)[key] = kv.first.Mark().line + 1;
-    const std::string where = source + ":" + std::to_string(kv.first.Mark().line + 1) + ": " + key + ": ";
+    if (key_lines != nullptr) (*key_lines)[key] = line;
+    const std::string where = source + ":" + std::to_string(line) + ": " + key + ": ";
     if (const Entry* e = Find(key)) {
-      if (auto err = e->set(kv.second); !err.empty()) errors->push_back(where + err);
+      if (auto err = e->set(kv.second); !err.empty()) {
+        // A broken rule reads "<key> = <value>: <rule>" like the validators' messages; a type error "<key>: ...".
+        errors->push_back(err.rfind("= ", 0) == 0 ? where.substr(0, where.size() - 2) + " " + err : where + err);
+      }
       continue;
     }
     // A section (prefix of some key)?

@@ -13,6 +13,10 @@ class Node;
 
 namespace sacfuse {
 
+// Every number of a config (AddDouble, AddFloat, AddInt, AddDoubleList) must be finite and at most this in
+// magnitude; Parse reports "<key> = <value>: must be a finite number ..." for any other, whatever the key.
+constexpr double kMaxConfigMagnitude = 1e9;
+
 class ConfigSchema {
  public:
   // Each binder keeps a pointer to the field; the schema must not outlive the struct.
@@ -25,7 +29,9 @@ class ConfigSchema {
   void AddDoubleList(const std::string& key, std::vector<double>* field, const std::string& doc);
 
   // Fills the bound fields from `root` (a YAML mapping). Collects every problem: unknown keys (with the keys
-  // allowed there), wrong types, values not in `allowed`; each message is "<source>:<line>: <key>: <problem>".
+  // allowed there), repeated keys, wrong types, values not in `allowed`, numbers that are not finite or exceed
+  // kMaxConfigMagnitude; each message is "<source>:<line>: <key>: <problem>" or, for a broken rule on a value,
+  // "<source>:<line>: <key> = <value>: <rule>".
   // Throws ConfigError listing them all.
   // `key_lines`, when given, receives the 1-based line of every key present in the YAML.
   void Parse(const YAML::Node& root, const std::string& source,

@@ -13,6 +13,7 @@
 #include "core/crs.h"
 #include "core/option_check.h"
 #include "core/error.h"
+#include "io/input_file.h"
 
 namespace sacfuse {
 namespace {
@@ -271,8 +272,12 @@ JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source
 }
 
 JobConfig LoadJobConfig(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError(path + ": cannot open the config file");
+  std::ifstream in;
+  try {
+    in = OpenInputStream(path, "config file");
+  } catch (const InputError& e) {
+    throw ConfigError(e.what());
+  }
   std::stringstream text;
   text << in.rdbuf();
   const auto base = std::filesystem::absolute(path).parent_path().string();

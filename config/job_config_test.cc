@@ -2,9 +2,14 @@
 #include "config/config_test_util.h"
 #include "config/job_config.h"
 
+#include <sys/stat.h>
+
+#include <filesystem>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "tests/support/test_support.h"
 
 namespace sacfuse {
 namespace {
@@ -91,6 +96,30 @@ TEST(JobConfigTest, DumpWithCommentsParsesBackToTheSameConfig) {
 
 TEST(JobConfigTest, MissingFileIsAConfigError) {
   EXPECT_THROW(LoadJobConfig("/nonexistent/sacfuse.yaml"), ConfigError);
+}
+
+// A FIFO in place of the config is refused at once instead of blocking the run forever (io/input_file.h).
+TEST(JobConfigTest, ConfigThatIsNotARegularFileIsRefused) {
+  sacfuse::testing::TempDir dir;
+  const std::string fifo = (dir / "job.yaml").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  try {
+    LoadJobConfig(fifo);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(fifo + ": cannot read config file: it is a FIFO (named pipe), not a regular "
+                                                "file"),
+              std::string::npos)
+        << e.what();
+  }
+  const std::string loop = (dir / "loop.yaml").string();
+  std::filesystem::create_symlink(loop, loop);
+  try {
+    LoadJobConfig(loop);
+    ADD_FAILURE() << "no error";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("Too many levels of symbolic links"), std::string::npos) << e.what();
+  }
 }
 
 TEST(JobConfigTest, TilingKeysParseAndValidate) {

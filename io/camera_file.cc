@@ -17,6 +17,8 @@
 #include "core/error.h"
 #include "core/photogrammetric_orientation.h"
 #include "io/camera_file_format.h"
+#include "io/input_file.h"
+#include "io/yaml_keys.h"
 
 namespace sacfuse {
 namespace {
@@ -249,6 +251,15 @@ std::string ScalarText(const std::string& path, const YAML::Node& node, const st
   return node.Scalar();
 }
 
+// Throws for the first repeated key of a mapping (`where` prefixes the key, e.g. "cameras.c1.").
+void RefuseRepeatedKeys(const std::string& path, const YAML::Node& map, const std::string& where) {
+  const std::vector<YamlRepeatedKey> repeats = RepeatedYamlKeys(map);
+  if (!repeats.empty()) {
+    throw InputError(path, "line " + std::to_string(repeats[0].line) + ": " + where + repeats[0].key + ": " +
+                               RepeatedYamlKeyProblem(repeats[0]));
+  }
+}
+
 CameraFile ReadYaml(const std::string& path) {
   YAML::Node root;
   try {
@@ -259,6 +270,7 @@ CameraFile ReadYaml(const std::string& path) {
     throw InputError(path, std::string("cannot read: ") + e.what());
   }
   if (!root.IsMap()) throw InputError(path, "expected a YAML map with a `views:` list");
+  RefuseRepeatedKeys(path, root, "");
   std::map<std::string, YAML::Node> cameras;
   std::optional<AttitudeFrame> default_frame;
   std::vector<double> scene_heights;
@@ -280,11 +292,13 @@ CameraFile ReadYaml(const std::string& path) {
     } else if (key == "cameras") {
       if (!entry.second.IsMap())
         throw InputError(path, "line " + std::to_string(line) + ": cameras: expected a map id -> interior");
+      RefuseRepeatedKeys(path, entry.second, "cameras.");
       for (const auto& cam : entry.second) {
         const std::string id = cam.first.Scalar();
         if (!cam.second.IsMap()) {
           throw InputError(path, "line " + std::to_string(LineOf(cam.first)) + ": cameras." + id + ": expected a map");
         }
+        RefuseRepeatedKeys(path, cam.second, "cameras." + id + ".");
         for (const auto& field : cam.second) {
           if (InteriorKeys().count(field.first.Scalar()) == 0) {
             throw InputError(path, "line " + std::to_string(LineOf(field.first)) + ": cameras." + id +
@@ -322,6 +336,7 @@ CameraFile ReadYaml(const std::string& path) {
     rec.line = LineOf(view);
     if (!view.IsMap())
       throw InputError(path, "line " + std::to_string(rec.line) + ": each view must be a map of fields");
+    RefuseRepeatedKeys(path, view, "view " + std::to_string(records.size() + 1) + ": ");
     // The named interior first; the view's own fields override it.
     if (const YAML::Node cam = view["camera"]) {
       const std::string id = ScalarText(path, cam, "camera");
@@ -403,8 +418,7 @@ std::vector<std::string> SplitCsv(const std::string& path, const std::string& li
 }
 
 CameraFile ReadCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open the camera file");
+  std::ifstream in = OpenInputStream(path, "camera file");
   std::vector<std::string> columns;
   std::vector<Record> records;
   std::string line;
@@ -458,8 +472,7 @@ CameraFileFormat CameraFileFormatOf(const std::string& path) {
 
 CameraFile ReadCameraFile(const std::string& path) {
   const CameraFileFormat format = CameraFileFormatOf(path);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "camera file does not exist");
+  CheckInputFile(path, "camera file");
   return format == CameraFileFormat::kYaml ? ReadYaml(path) : ReadCsv(path);
 }
 

@@ -203,6 +203,14 @@ TEST(CameraFileTest, ErrorsNameFileLineViewAndField) {
       {"focal_px", "must be > 0"});
   ExpectError(WriteText(dir, "dup.yaml", head + pose + "}\n" + head.substr(7) + pose + "}\n"),
               {"line 3", "\"a.jpg\" is listed twice (first on line 2)"});
+  // Repeated keys (yaml-cpp would keep one silently): in a view, in an interior, at the top level.
+  ExpectError(WriteText(dir, "repeat.yaml", head + pose + ", x_m: 5}\n"),
+              {"line 2", "view 1: x_m: duplicate key (first on line 2)"});
+  ExpectError(WriteText(dir, "repeatcam.yaml", "cameras:\n  c1: {focal_px: 20,\n       focal_px: 30}\n"
+                                               "views:\n  - {image: a.jpg, depth: a.tif, camera: c1, " + pose + "}\n"),
+              {"line 3", "cameras.c1.focal_px: duplicate key (first on line 2)"});
+  ExpectError(WriteText(dir, "repeattop.yaml", head + pose + "}\nversion: 1\nversion: 1\n"),
+              {"line 4", "version: duplicate key (first on line 3)"});
   ExpectError(WriteText(dir, "frame.yaml", head + pose + ", attitude_frame: magnetic}\n"),
               {"attitude_frame", "neither grid nor local_enu"});
   ExpectError(WriteText(dir, "camid.yaml", "views:\n  - {image: a.jpg, depth: a.tif, camera: c9, " + pose + "}\n"),

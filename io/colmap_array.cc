@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 
 // COLMAP writes the floats with a raw native write on little-endian machines; we read them with memcpy, which
 // is only a little-endian decode on a little-endian host. Big-endian hosts are not supported.
@@ -52,11 +53,7 @@ void ReadExactly(std::ifstream& in, const std::string& path, char* dst, size_t b
   }
 }
 
-std::ifstream OpenForReading(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open dense array: ") + std::strerror(errno));
-  return in;
-}
+std::ifstream OpenForReading(const std::string& path) { return OpenInputStream(path, "dense array"); }
 
 // Copies `rows` rows of one channel plane (row-major floats) into the interleaved raster starting at `row0`.
 void ScatterPlane(const std::vector<float>& plane, int channel, int row0, int rows, Raster<float>* out) {
@@ -73,8 +70,6 @@ void ScatterPlane(const std::vector<float>& plane, int channel, int row0, int ro
 }  // namespace
 
 ColmapArrayShape ReadColmapArrayShape(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path, "dense array file does not exist");
   std::ifstream in = OpenForReading(path);
   in.seekg(0, std::ios::end);
   const auto end = in.tellg();

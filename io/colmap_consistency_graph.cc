@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 
 namespace sacfuse {
 namespace {
@@ -38,8 +39,7 @@ int32_t ReadLe32(const char* p) {
 }  // namespace
 
 ConsistencyGraph ReadColmapConsistencyGraph(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, "cannot open the consistency graph");
+  std::ifstream in = OpenInputStream(path, "consistency graph");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ConsistencyGraph graph;
   size_t offset = 0;

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 
 namespace sacfuse {
 namespace {
@@ -60,8 +61,7 @@ Eigen::Quaterniond NormalisedQuaternion(double w, double x, double y, double z, 
 
 class BinaryReader {
  public:
-  explicit BinaryReader(const std::string& path) : path_(path), in_(path, std::ios::binary) {
-    if (!in_) throw InputError(path, "cannot open COLMAP model file");
+  explicit BinaryReader(const std::string& path) : path_(path), in_(OpenInputStream(path, "COLMAP model file")) {
     in_.seekg(0, std::ios::end);
     size_ = static_cast<uint64_t>(in_.tellg());
     in_.seekg(0);
@@ -227,9 +227,7 @@ void ReadPoints3DBinary(const std::string& path, ColmapModel* model) {
 
 class TextReader {
  public:
-  explicit TextReader(const std::string& path) : path_(path), in_(path) {
-    if (!in_) throw InputError(path, "cannot open COLMAP model file");
-  }
+  explicit TextReader(const std::string& path) : path_(path), in_(OpenInputStream(path, "COLMAP model file")) {}
   // Next line with trailing CR/whitespace removed; false at end of file.
   bool NextLine(std::string* line) {
     if (!std::getline(in_, *line)) return false;
@@ -447,9 +445,10 @@ ColmapModel ReadColmapModel(const std::string& dir) {
     const std::string txt = Join(dir, (std::string(part.stem) + ".txt").c_str());
     std::error_code ec;
     std::string used;
-    if (std::filesystem::is_regular_file(bin, ec)) {
+    // Whatever is there is read through the readers' checks (a FIFO or folder named cameras.bin is refused).
+    if (std::filesystem::exists(std::filesystem::symlink_status(bin, ec))) {
       part.binary(used = bin, &model);
-    } else if (std::filesystem::is_regular_file(txt, ec)) {
+    } else if (std::filesystem::exists(std::filesystem::symlink_status(txt, ec))) {
       part.text(used = txt, &model);
     } else {
       throw InputError(bin, std::string("missing COLMAP sparse model file (neither ") + part.stem + ".bin nor " +

@@ -14,7 +14,9 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/colmap_array.h"
+#include "io/input_file.h"
 #include "io/rgb_image_file.h"
+#include "io/view_checks.h"
 
 namespace sacfuse {
 namespace {
@@ -28,7 +30,7 @@ std::string JoinPath(const std::string& dir, const std::string& relative) {
 std::string SparseFile(const std::string& dir, const std::string& stem) {
   const std::string bin = JoinPath(dir, "sparse/" + stem + ".bin");
   std::error_code ec;
-  return std::filesystem::is_regular_file(bin, ec) ? bin : JoinPath(dir, "sparse/" + stem + ".txt");
+  return std::filesystem::exists(bin, ec) ? bin : JoinPath(dir, "sparse/" + stem + ".txt");
 }
 
 std::string Quoted(const std::string& s) { return "\"" + s + "\""; }
@@ -81,8 +83,7 @@ PinholeCamera ToPinhole(const ColmapCamera& cam, const std::string& cameras_file
 
 // fusion.cfg: one image name per line; surrounding whitespace and empty lines ignored (as COLMAP does).
 std::vector<std::pair<std::string, int>> ReadFusionConfig(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "cannot open");
+  std::ifstream in = OpenInputStream(path, "fusion.cfg");
   std::vector<std::pair<std::string, int>> names;
   std::string line;
   int line_number = 0;
@@ -108,8 +109,6 @@ bool SizeMatchesAspect(int w, int h, int image_w, int image_h) {
 // Reads a dense array for `view`, checking its channel count and size; every error names the image.
 Raster<float> ReadDenseForView(const std::string& path, const View& view, int channels, const char* kind) {
   const std::string for_image = " (" + std::string(kind) + " of image " + Quoted(view.name) + ")";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, std::string("missing ") + kind + for_image);
   Raster<float> raster;
   try {
     raster = ReadColmapArray(path);
@@ -178,6 +177,9 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
     view.camera = ToPinhole(model_.cameras.at(img.camera_id), cameras_file, img.name);
     view.cam_from_world.rotation = img.cam_from_world_rotation.normalized();
     view.cam_from_world.translation = img.cam_from_world_translation;
+    const std::string who = "image " + Quoted(img.name) + " (image_id " + std::to_string(img.image_id) + ")";
+    CheckViewIntrinsics(view.camera, cameras_file, who + ", camera_id " + std::to_string(img.camera_id));
+    CheckViewPose(view.cam_from_world, images_file, who);
     views_.push_back(std::move(view));
   }
 }
@@ -194,7 +196,7 @@ std::string ColmapWorkspace::ConsistencyGraphPath(const View& view) const {
 
 bool ColmapWorkspace::HasConsistencyGraph(const View& view) const {
   std::error_code ec;
-  return std::filesystem::is_regular_file(ConsistencyGraphPath(view), ec);
+  return std::filesystem::exists(ConsistencyGraphPath(view), ec);  // anything there is read (and checked)
 }
 
 ConsistencyGraph ColmapWorkspace::ReadConsistencyGraph(const View& view) const {
@@ -225,7 +227,7 @@ std::string ColmapWorkspace::NormalMapPath(const View& view) const {
 }
 
 DepthMap ColmapWorkspace::ReadDepthMap(const View& view) const {
-  return ReadDenseForView(DepthMapPath(view), view, 1, "depth map");
+  return WarnIfNoValidDepth(ReadDenseForView(DepthMapPath(view), view, 1, "depth map"), view, DepthMapPath(view));
 }
 
 DepthRasterSize ColmapWorkspace::DepthSize(const View& view) const {

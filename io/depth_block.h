@@ -50,4 +50,8 @@ class DepthBlock {
   virtual ConsistencyGraph ReadConsistencyGraph(const View& view) const;
 };
 
+// For the readers of whole depth maps: warns (io/input_warnings.h) naming the view and `path` when `depth` has no
+// valid pixel (the view then adds no points); returns `depth`.
+DepthMap WarnIfNoValidDepth(DepthMap depth, const View& view, const std::string& path);
+
 }  // namespace sacfuse

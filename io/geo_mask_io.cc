@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 
 namespace sacfuse {
 namespace {
@@ -33,8 +34,8 @@ void WriteGeoMask(const std::string& png_path, const GeoMask& mask, const std::s
 }
 
 GeoMask ReadGeoMask(const std::string& png_path) {
-  std::ifstream in(SidecarPath(png_path));
-  if (!in) throw InputError(SidecarPath(png_path), "cannot open the mask's JSON sidecar");
+  std::ifstream in = OpenInputStream(SidecarPath(png_path), "evaluation mask's JSON sidecar");
+  CheckInputFile(png_path, "evaluation mask PNG");
   nlohmann::json j;
   try {
     in >> j;

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "io/input_file.h"
 #include "io/las_format.h"
 #include "io/laz_point_reader.h"
 
@@ -61,8 +62,9 @@ struct LasReader::Impl {
 };
 
 void LasReader::Impl::Open() {
+  CheckInputFile(path, "LAS file");
   file = std::fopen(path.c_str(), "rb");
-  if (file == nullptr) Fail(std::string("cannot open: ") + std::strerror(errno));
+  if (file == nullptr) ThrowInputOsError(path, "LAS file", errno);
   if (fseeko(file, 0, SEEK_END) != 0) Fail("cannot seek");
   file_size = static_cast<uint64_t>(ftello(file));
   ParseHeader();

@@ -4,13 +4,16 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <limits>
 #include <memory>
 
 #include "core/error.h"
+#include "io/input_file.h"
 #include "io/las_crs.h"
 #include "io/las_format.h"
 #include "io/wkt1.h"
@@ -41,8 +44,13 @@ class Validator {
   explicit Validator(const std::string& path) : path_(path) {}
 
   std::vector<std::string> Run() {
+    try {
+      CheckInputFile(path_, "LAS file");
+    } catch (const InputError& e) {
+      return {std::string("file: ") + e.what()};
+    }
     file_.reset(std::fopen(path_.c_str(), "rb"));
-    if (!file_) return {"file: cannot open " + path_};
+    if (!file_) return {"file: cannot open " + path_ + ": " + std::strerror(errno)};
     if (std::fseek(file_.get(), 0, SEEK_END) != 0) return {"file: cannot seek in " + path_};
     file_size_ = static_cast<uint64_t>(std::ftell(file_.get()));
     if (!ReadHeader()) return findings_;

@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/rgb_image_file.h"
+#include "io/view_checks.h"
 
 namespace sacfuse {
 namespace {
@@ -137,7 +138,7 @@ OpenMvsBlock::OpenMvsBlock(const std::string& dir) : dir_(dir) {
   if (!fs::is_directory(dir, ec)) throw InputError(dir, "OpenMVS input folder does not exist or is not a folder");
   std::map<uint32_t, fs::path> files;
   for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    if (!entry.is_regular_file(ec)) continue;
+    // Every depth%04u.dmap is a view, whatever it is: ReadDmapHeader refuses one that is not a regular file.
     const long long number = DmapNumber(entry.path());
     if (number >= 0) files.emplace(static_cast<uint32_t>(number), entry.path());
   }
@@ -154,6 +155,9 @@ OpenMvsBlock::OpenMvsBlock(const std::string& dir) : dir_(dir) {
     const std::string who = ForView(view.index, view.name);
     view.camera = PinholeFromDmap(header, path, who);
     view.cam_from_world = CamFromWorldFromDmap(header.camera, path, who);
+    const std::string view_text = "view " + std::to_string(view.index) + " (" + view.name + ")";
+    CheckViewIntrinsics(view.camera, path, view_text);
+    CheckViewPose(view.cam_from_world, path, view_text);
     std::string image = header.image_path;
     std::replace(image.begin(), image.end(), '\\', '/');  // written on Windows
     if (image.empty()) throw InputError(path, "the depth map names no image" + who);
@@ -175,7 +179,9 @@ DepthRasterSize OpenMvsBlock::DepthSize(const View& view) const {
   return {static_cast<int>(h.depth_width), static_cast<int>(h.depth_height)};
 }
 
-DepthMap OpenMvsBlock::ReadDepthMap(const View& view) const { return ReadDmapDepth(DepthMapPath(view)); }
+DepthMap OpenMvsBlock::ReadDepthMap(const View& view) const {
+  return WarnIfNoValidDepth(ReadDmapDepth(DepthMapPath(view)), view, DepthMapPath(view));
+}
 
 DepthMap OpenMvsBlock::ReadDepthWindow(const View& view, const PixelWindow& window) const {
   return ReadDmapDepthWindow(DepthMapPath(view), window);

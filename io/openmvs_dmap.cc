@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 
 // OpenMVS writes its structs and arrays with raw fwrite on little-endian machines; we decode them with memcpy,
 // which is only correct on a little-endian host.
@@ -45,13 +46,7 @@ std::string Printable(const char* bytes, size_t n) {
   return "\"" + out + "\"";
 }
 
-std::ifstream OpenForReading(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw InputError(path, "depth map file does not exist");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path, std::string("cannot open depth map: ") + std::strerror(errno));
-  return in;
-}
+std::ifstream OpenForReading(const std::string& path) { return OpenInputStream(path, "depth map"); }
 
 // Reads `bytes` at `offset`, which the caller has checked lie inside the file; a short read means the file
 // shrank while we read it.

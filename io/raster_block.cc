@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include "core/backproject.h"
 #include "core/error.h"
 #include "core/photogrammetric_orientation.h"
 #include "io/rgb_image_file.h"
 #include "io/tiff_depth.h"
+#include "io/view_checks.h"
 
 namespace sacfuse {
 namespace {
@@ -117,6 +119,8 @@ RasterBlock::RasterBlock(const std::string& camera_file, DepthKind depth_kind, c
     view.name = fv.image;
     view.camera = fv.camera;
     view.cam_from_world = CamFromWorldOfFileView(fv, crs, camera_file_);
+    CheckViewIntrinsics(view.camera, camera_file_, ViewText(fv));
+    CheckViewPose(view.cam_from_world, camera_file_, ViewText(fv));
     views_.push_back(std::move(view));
   }
 }
@@ -165,7 +169,7 @@ DepthMap RasterBlock::ReadDepthMap(const View& view) const {
   const PinholeCamera cam = DepthCamera(view, reader.info().width, reader.info().height, path);
   DepthMap depth = ForView(view, [&] { return reader.ReadWindow({0, cam.height, 0, cam.width}); });
   RangeToZ(cam, 0, 0, &depth);
-  return depth;
+  return WarnIfNoValidDepth(std::move(depth), view, path);
 }
 
 DepthMap RasterBlock::ReadDepthWindow(const View& view, const PixelWindow& window) const {

@@ -1,21 +1,37 @@
 #include "io/rgb_image_file.h"
 
-#include <filesystem>
+#include <cerrno>
+#include <fstream>
+#include <iterator>
+#include <limits>
 #include <opencv2/imgcodecs.hpp>
 #include <vector>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/image_completeness.h"
+#include "io/input_file.h"
+#include "io/input_warnings.h"
 
 namespace sacfuse {
 
 RgbImage ReadRgbImageFile(const std::string& path, const std::string& who, int expected_width, int expected_height) {
   const std::string for_who = " (" + who + ")";
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "missing image file" + for_who);
+  const std::string what = "image file" + for_who;
+  std::ifstream in = OpenInputStream(path, what);
+  errno = 0;
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) ThrowInputOsError(path, what, errno != 0 ? errno : EIO);
+  if (bytes.size() > static_cast<size_t>(std::numeric_limits<int>::max())) {
+    throw InputError(path, "image file larger than 2 GiB" + for_who);
+  }
+  if (const std::string problem = IncompleteImageProblem(bytes); !problem.empty()) {
+    WarnAboutInput(path, problem + for_who);
+  }
   cv::Mat bgr;
   try {
-    bgr = cv::imread(path, cv::IMREAD_COLOR | cv::IMREAD_IGNORE_ORIENTATION);
+    const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data()));
+    bgr = cv::imdecode(encoded, cv::IMREAD_COLOR | cv::IMREAD_IGNORE_ORIENTATION);
   } catch (const cv::Exception& e) {
     throw InputError(path, std::string("cannot decode image: ") + e.what() + for_who);
   }

@@ -16,6 +16,8 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
+#include "io/input_warnings.h"
 
 namespace sacfuse {
 namespace {
@@ -105,6 +107,12 @@ class TiffFile {
     return d.empty() ? "" : " (libtiff: " + d + ")";
   }
   [[noreturn]] void Fail(const std::string& what) const { throw InputError(path_, what + Details()); }
+  // libtiff's warnings about a file that was read anyway become warnings naming it (io/input_warnings.h).
+  void ReportWarnings() {
+    if (messages_->warnings.empty()) return;
+    WarnAboutInput(path_, "libtiff warnings: " + messages_->warnings);
+    messages_->warnings.clear();
+  }
 
  private:
   std::string path_;
@@ -151,8 +159,7 @@ struct OpenedDepth {
 };
 
 OpenedDepth OpenDepth(const std::string& path) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "depth raster file does not exist");
+  CheckInputFile(path, "depth raster");
   OpenedDepth out;
   // "m": no memory mapping (a file truncated under us must fail with an error, not a bus error).
   out.file = std::make_unique<TiffFile>(path, "rm");
@@ -208,6 +215,7 @@ OpenedDepth OpenDepth(const std::string& path) {
   if (TIFFGetField(tif, kGdalNodataTag, &nodata_text) && nodata_text != nullptr) {
     info.nodata = ParseNodata(path, nodata_text);
   }
+  f.ReportWarnings();
   return out;
 }
 
@@ -293,6 +301,7 @@ DepthMap TiffDepthReader::ReadWindow(const PixelWindow& window) {
   }
   DepthMap out(window.width(), window.height(), 1, 0.0f);
   ReadBlocks(impl_->opened, window, &out);
+  impl_->opened.file->ReportWarnings();
   return out;
 }
 

@@ -9,7 +9,8 @@
 //
 // Every error is an InputError naming the file: not a TIFF, truncated, not float32 (e.g. 16-bit integer or
 // float64), several bands, a bad GDAL_NODATA text, a strip or tile that fails to decode. libtiff's own error and
-// warning messages never reach stderr: they are collected per file and appended to the exception's message.
+// warning messages never reach stderr: they are collected per file and appended to the exception's message; the
+// warnings about a file that is read successfully are logged as a warning naming it (io/input_warnings.h).
 #include <memory>
 #include <optional>
 #include <string>

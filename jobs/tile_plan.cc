@@ -55,7 +55,7 @@ TilePlan BuildTilePlan(const DepthBlock& input, const TilingOptions& options) {
     throw InputError(input.source(), "no view's footprint meets the height range [" + std::to_string(z_min) + ", " +
                                           std::to_string(z_max) + "] m; cannot plan tiles");
   }
-  TilePlan plan(TileGrid(area, options.tile_size_m, options.halo_m));
+  TilePlan plan(TileGrid(area, options.tile_size_m, options.halo_m, BlockGsdAtHeight(views, 0.5 * (z_min + z_max))));
   plan.options = options;
   plan.z_min_m = z_min;
   plan.z_max_m = z_max;

@@ -21,11 +21,59 @@ void ValidateTilingOptions(const TilingOptions& o) {
   check.ThrowIfFailed("tiling options");
 }
 
-TileGrid::TileGrid(const Bounds2d& area, double tile_size_m, double halo_m)
+namespace {
+
+std::string Metres(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.6g", v);
+  return buf;
+}
+
+// Refuses grids that are too fine before anything proportional to their tile count is allocated.
+void CheckGridSize(const Bounds2d& area, double tile_size_m, double gsd_m) {
+  const std::string key = "tiling.tile_size_m = " + Metres(tile_size_m) + ": ";
+  const std::string area_text = Metres(area.max.x() - area.min.x()) + " x " + Metres(area.max.y() - area.min.y()) +
+                                " m";
+  if (gsd_m > 0 && tile_size_m < kMinTileSizeGsd * gsd_m) {
+    throw ConfigError(key + "below " + Metres(kMinTileSizeGsd) + " ground sampling distances of the block (GSD " +
+                      Metres(gsd_m) + " m, so at least " + Metres(kMinTileSizeGsd * gsd_m) +
+                      " m); such tiles are mostly halo. Use a larger tile size, or 0 (automatic)");
+  }
+  const double nx = std::floor(area.max.x() / tile_size_m) - std::floor(area.min.x() / tile_size_m) + 1;
+  const double ny = std::floor(area.max.y() / tile_size_m) - std::floor(area.min.y() / tile_size_m) + 1;
+  if (!(nx * ny <= kMaxTiles)) {
+    const double smallest = std::sqrt((area.max.x() - area.min.x()) * (area.max.y() - area.min.y()) / kMaxTiles);
+    throw ConfigError(key + "the project area of " + area_text + " would be cut into " + Metres(nx) + " x " +
+                      Metres(ny) + " = " + Metres(nx * ny) + " tiles, more than the limit of " + Metres(kMaxTiles) +
+                      "; use tiles of at least ~" + Metres(std::ceil(smallest * 1.1)) + " m, or 0 (automatic)");
+  }
+}
+
+}  // namespace
+
+double BlockGsdAtHeight(const std::vector<View>& views, double z_m) {
+  std::vector<double> gsd;
+  for (const View& view : views) {
+    const Eigen::Vector3d centre = view.CenterInWorld();
+    const Eigen::Vector3d dir = view.ViewDirectionInWorld();
+    const double focal = std::max(view.camera.fx, view.camera.fy);
+    if (std::abs(dir.z()) < 1e-9 || !(focal > 0)) continue;
+    const double t = (z_m - centre.z()) / dir.z();  // distance along the unit principal ray
+    if (t > 0 && std::isfinite(t)) gsd.push_back(t / focal);
+  }
+  if (gsd.empty()) return 0.0;
+  std::nth_element(gsd.begin(), gsd.begin() + gsd.size() / 2, gsd.end());
+  return gsd[gsd.size() / 2];
+}
+
+TileGrid::TileGrid(const Bounds2d& area, double tile_size_m, double halo_m, double gsd_m)
     : area_(area), tile_size_m_(tile_size_m), halo_m_(halo_m), single_(tile_size_m == 0.0) {
   if (area.IsEmpty()) throw Error("tile grid: the project area is empty");
-  if (!(tile_size_m >= 0.0) || !(halo_m >= 0.0)) throw Error("tile grid: tile size and halo must be >= 0");
+  if (!(tile_size_m >= 0.0) || !(halo_m >= 0.0) || !std::isfinite(tile_size_m) || !std::isfinite(halo_m)) {
+    throw Error("tile grid: tile size and halo must be finite and >= 0");
+  }
   if (single_) return;
+  CheckGridSize(area, tile_size_m, gsd_m);
   kx0_ = static_cast<long long>(std::floor(area.min.x() / tile_size_m));
   ky0_ = static_cast<long long>(std::floor(area.min.y() / tile_size_m));
   // Fix rounding so that Edge(k0) <= min < Edge(k0 + 1) with the same formula CoreBounds uses.

@@ -30,6 +30,17 @@ struct TilingOptions {
 // Throws ConfigError listing every broken rule as "tiling.<field> = v: rule".
 void ValidateTilingOptions(const TilingOptions& options);
 
+// Bounds of a tile grid, enforced where it is made (TileGrid's constructor): more tiles than this cannot be
+// planned (each tile reads a halo and a depth window per view; 100,000 tiles of a city block are already tiles
+// of a few metres), and a tile edge below kMinTileSizeGsd ground sampling distances is mostly halo.
+constexpr double kMaxTiles = 100000;
+constexpr double kMinTileSizeGsd = 10;
+
+// Typical ground sampling distance of a block at height z_m, metres: the median over views of the distance along
+// the principal ray to the plane z = z_m, divided by the focal length (views looking away from the plane are
+// skipped). 0 when no view sees the plane.
+double BlockGsdAtHeight(const std::vector<View>& views, double z_m);
+
 struct TileIndex {
   int ix = 0, iy = 0;  // 0-based column (x) and row (y) in the grid
   bool operator==(const TileIndex& o) const { return ix == o.ix && iy == o.iy; }
@@ -39,8 +50,10 @@ struct TileIndex {
 class TileGrid {
  public:
   // A grid covering `area` with tiles of tile_size_m aligned to multiples of it (tile_size_m = 0: one tile equal
-  // to `area`). Throws Error for an empty area or a negative size.
-  TileGrid(const Bounds2d& area, double tile_size_m, double halo_m);
+  // to `area`). Throws Error for an empty area or a negative or non-finite size, and ConfigError naming
+  // tiling.tile_size_m, its value, the area, the tile count and the limit when the grid would have more than
+  // kMaxTiles tiles or (gsd_m > 0, the block's GSD) a tile edge below kMinTileSizeGsd x gsd_m.
+  TileGrid(const Bounds2d& area, double tile_size_m, double halo_m, double gsd_m = 0.0);
 
   int num_x() const { return num_x_; }
   int num_y() const { return num_y_; }

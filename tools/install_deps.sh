@@ -50,14 +50,18 @@ else
 fi
 if [ "$MODE" = build ]; then exit 0; fi
 
-# Optional, benchmarks only (tools/bench, `sacfuse colmap-fusion`, tools/bench/compare_colmap.sh): COLMAP's
-# stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports. Building and the
-# test suite do not need them (the COLMAP test skips without it), so a package the archive lacks (colmap is in
-# Debian main for amd64/arm64 but not on every architecture or derivative) or a failed install only warns.
+# Optional: benchmarks (tools/bench, `sacfuse colmap-fusion`, tools/bench/compare_colmap.sh): COLMAP's
+# stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports; fuzzing
+# (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes. Building and the test suite do not need them
+# (the COLMAP test skips without it; tools/sanitize.sh uses the default compiler's sanitizers), so a package the
+# archive lacks (colmap is in Debian main for amd64/arm64 but not on every architecture or derivative) or a failed
+# install only warns.
 OPTIONAL_PKGS=(
   colmap                   # COLMAP 3.8 (CPU build): stereo_fusion, the comparison of issue 4
   time                     # /usr/bin/time -v: wall time and peak RSS of `sacfuse run` in compare_colmap.sh
   jq                       # reading run_report.json / eval.json in compare_colmap.sh
+  clang                    # tools/fuzz.sh: the libFuzzer targets of tests/fuzz are built with clang
+  libclang-rt-14-dev       # tools/fuzz.sh: libFuzzer, ASan and UBSan runtimes of clang 14 (Debian 12)
 )
 if [ "$MODE" = all ] && [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
   not_installed=()
@@ -72,15 +76,15 @@ if [ "$MODE" = all ] && [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
     if apt-cache show "$p" >/dev/null 2>&1; then
       optional_missing+=("$p")
     else
-      echo "[install_deps] optional package $p is not available here; skipping it (only benchmarks need it)"
+      echo "[install_deps] optional package $p is not available here; skipping it (only benchmarks or fuzzing need it)"
     fi
   done
   if [ ${#optional_missing[@]} -gt 0 ]; then
-    echo "[install_deps] installing optional benchmark packages: ${optional_missing[*]}"
+    echo "[install_deps] installing optional benchmark and fuzzing packages: ${optional_missing[*]}"
     export DEBIAN_FRONTEND=noninteractive
     if ! $SUDO apt-get install -y -qq --no-install-recommends "${optional_missing[@]}"; then
-      echo "[install_deps] WARNING: could not install ${optional_missing[*]}; benchmarks against COLMAP will" \
-           "skip or fail, everything else works (set SACFUSE_SKIP_OPTIONAL=1 to skip this step)" >&2
+      echo "[install_deps] WARNING: could not install ${optional_missing[*]}; benchmarks against COLMAP and" \
+           "tools/fuzz.sh will skip or fail, everything else works (set SACFUSE_SKIP_OPTIONAL=1 to skip this step)" >&2
     fi
   fi
 fi
