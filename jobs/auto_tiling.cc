@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -98,9 +99,14 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
     for (const double size : candidates) {
       TilingOptions options = config.tiling;
       options.tile_size_m = size;
-      const TilePlan plan = BuildTilePlan(input, options);
+      std::optional<TilePlan> plan;
+      try {
+        plan.emplace(BuildTilePlan(input, options));
+      } catch (const ConfigError&) {
+        continue;  // a candidate the grid refuses (below kMinTileSizeGsd GSD, or over kMaxTiles tiles): not for us
+      }
       size_t tiles = 0;
-      const uint64_t largest = LargestTileBytes(plan, config.fusion, &tiles);
+      const uint64_t largest = LargestTileBytes(*plan, config.fusion, &tiles);
       const int parallel = static_cast<int>(std::min<size_t>(static_cast<size_t>(wanted), std::max<size_t>(tiles, 1)));
       smallest_bytes = largest;
       smallest_size = size;

@@ -146,7 +146,7 @@ for name in slurm run; do
   cat > "$B/$name.yaml" <<EOF
 # tools/bench/slurm_e2e.sh: the tiny block, ${TILE_M} m tiles; slurm.yaml and run.yaml differ only in output.dir.
 input: {path: "."}
-output: {dir: "out_$name"}
+output: {dir: "out_$name", format: las}  # LAS: las_same_points.py compares uncompressed records
 tiling: {tile_size_m: $TILE_M}
 EOF
 done
