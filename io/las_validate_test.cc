@@ -324,7 +324,7 @@ namespace sacfuse {
 namespace {
 
 // LAZ is checked on its decoded points: our own LAZ passes for LAS 1.4 and 1.2; a corrupted chunk is a finding.
-TEST(LasValidateTest, ChecksLazOnItsDecodedPoints) {
+TEST(LasValidateLazTest, ChecksLazOnItsDecodedPoints) {
   TempDir dir;
   for (const int minor : {4, 2}) {
     FileSpec spec;
