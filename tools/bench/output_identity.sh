@@ -25,7 +25,8 @@ mkdir -p "$work"
 work=$(cd "$work" && pwd)
 # Binaries that know output.format (las | laz) are asked for LAS; older ones write only fused.las.
 format_key=""
-if "$bin" run --print-defaults 2>/dev/null | grep -qE "^  format: \"(las|laz)\""; then format_key=", format: las"; fi
+defaults=$("$bin" run --print-defaults 2>/dev/null || true)  # not piped into grep -q: SIGPIPE under pipefail
+if grep -qE "^  format: \"(las|laz)\"" <<<"$defaults"; then format_key=", format: las"; fi
 
 # Checksum of a LAS file with its creation day and year (header bytes 90..93) zeroed.
 las_digest() {
