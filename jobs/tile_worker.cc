@@ -17,7 +17,6 @@ namespace sacfuse {
 TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool forced, MemoryAdmission* admission,
                            ClusterTableCache* cluster_cache) {
   TileWorkOutcome out;
-  if (!forced && VerifyTileDone(job.tiles_dir, tile.id, job.hash).done) return out;
   const double claim_timeout_s = job.config.tiling.claim_timeout_s;
   const ClaimAttempt claim = TryClaimTile(job.tiles_dir, tile.id, claim_timeout_s);
   if (!claim.claimed) {
@@ -33,9 +32,11 @@ TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool for
     return out;
   }
   try {
-    const bool superpixels = MakeFusionMethod(job.config.fusion)->needs().superpixels;
-    EnsureTiledSuperpixels(job.input, job.plan, job.config.fusion.sac, SuperpixelCacheDir(job.config), {}, &tile,
-                           superpixels);
+    if (!job.caches_ready) {
+      const bool superpixels = MakeFusionMethod(job.config.fusion)->needs().superpixels;
+      EnsureTiledSuperpixels(job.input, job.plan, job.config.fusion.sac, SuperpixelCacheDir(job.config), {}, &tile,
+                             superpixels);
+    }
     CheckTileFitsBudget(tile, job.config);
     std::optional<MemoryReservation> reservation;
     if (admission != nullptr) reservation.emplace(*admission, MethodTileBytes(tile, job.config.fusion));

@@ -23,6 +23,7 @@ struct TileJob {
   LasWriterOptions las;   // with the plan's shared offset
   std::string tiles_dir;  // DIR/tiles
   std::string hash;       // ResultSettingsHash(config)
+  bool caches_ready = false;  // every view's superpixel and colour caches were made before the tiles (run)
 };
 
 enum class TileWork {
@@ -38,7 +39,9 @@ struct TileWorkOutcome {
   FusedViews fused;    // kComputed
 };
 
-// Works on `tile` unless it is done (`forced`: recompute even then) or another live worker holds its claim. A
+// Works on `tile` (which the caller found not done, or `forced`: recompute even when done) unless another live
+// worker holds its claim or finished it meanwhile (checked again under the claim); makes the caches of its views
+// unless job.caches_ready. A
 // tile that throws gets a failed marker (the error is logged and returned, not thrown); claim I/O errors throw.
 // `admission` (may be null) reserves the tile's memory estimate while it runs; `cluster_cache` may be null.
 TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool forced, MemoryAdmission* admission,

@@ -207,7 +207,7 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   MemoryAdmission admission(TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   std::mutex mutex;  // guards out and progress across tile workers
-  const TileJob job{config, input, plan, tile_las, tiles_dir, hash};
+  const TileJob job{config, input, plan, tile_las, tiles_dir, hash, /*caches_ready=*/true};
   // Works on one tile; false when another live worker holds it.
   const auto attempt = [&](const PlannedTile& tile, bool forced) {
     const TileWorkOutcome r = WorkOnTile(job, tile, forced, &admission, &cluster_cache);
