@@ -22,6 +22,39 @@ std::string TemporaryPathFor(const std::string& path) {
   return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
+bool IsTemporaryFileName(const std::string& file_name) {
+  const size_t pos = file_name.rfind(".tmp-");
+  if (pos == std::string::npos || pos == 0) return false;
+  const std::string tail = file_name.substr(pos + 5);  // <pid>-<n>
+  const size_t dash = tail.find('-');
+  const auto digits = [](const std::string& t) {
+    return !t.empty() && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  return dash != std::string::npos && digits(tail.substr(0, dash)) && digits(tail.substr(dash + 1));
+}
+
+std::vector<std::string> RemoveTemporaryFiles(const std::string& dir, bool recursive) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  std::vector<std::string> removed;
+  if (!fs::is_directory(dir, ec)) return removed;
+  std::vector<fs::path> temporary;
+  const auto visit = [&](const fs::directory_entry& entry) {
+    if (entry.is_regular_file(ec) && IsTemporaryFileName(entry.path().filename().string())) {
+      temporary.push_back(entry.path());
+    }
+  };
+  if (recursive) {
+    for (const auto& entry : fs::recursive_directory_iterator(dir, ec)) visit(entry);
+  } else {
+    for (const auto& entry : fs::directory_iterator(dir, ec)) visit(entry);
+  }
+  for (const auto& path : temporary) {
+    if (fs::remove(path, ec)) removed.push_back(path.string());
+  }
+  return removed;
+}
+
 void FsyncPath(const std::string& path) {
   const int fd = ::open(path.c_str(), O_RDONLY);
   if (fd < 0) throw Error(path + ": cannot open for fsync: " + std::strerror(errno));

@@ -3,11 +3,17 @@
 // fsync, rename over the final path, fsync the folder.
 #include <cstdio>
 #include <string>
+#include <vector>
 
 namespace sacfuse {
 
-// Temporary sibling name for `path` (unique per process and call).
+// Temporary sibling name for `path` (unique per process and call): "<path>.tmp-<pid>-<n>".
 std::string TemporaryPathFor(const std::string& path);
+// Whether a file name has the form TemporaryPathFor gives.
+bool IsTemporaryFileName(const std::string& file_name);
+// Deletes the files in `dir` (and its sub-folders when `recursive`) named as TemporaryPathFor names them, left by
+// a killed process (callers make sure no live process of the job writes there); returns their paths.
+std::vector<std::string> RemoveTemporaryFiles(const std::string& dir, bool recursive = false);
 // fsync a written file by path; throws Error on failure.
 void FsyncPath(const std::string& path);
 // Rename `temp_path` onto `final_path` after fsyncing it, then fsync the parent folder.

@@ -28,7 +28,7 @@ class ColmapWorkspace : public DepthBlock {
   const std::vector<View>& views() const override { return views_; }
   const ColmapModel& model() const { return model_; }
 
-  std::string ImagePath(const View& view) const;
+  std::string ImagePath(const View& view) const override;
   std::string DepthMapPath(const View& view) const override;
   std::string NormalMapPath(const View& view) const;
 

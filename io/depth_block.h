@@ -31,6 +31,9 @@ class DepthBlock {
 
   // The file holding a view's depth (for messages and cache keys).
   virtual std::string DepthMapPath(const View& view) const = 0;
+  // The file holding a view's image, or "" when the input has none. With DepthMapPath and the view's camera, what
+  // a view's identity is made of (io/view_identity.h): caches and tile markers are valid only while it is unchanged.
+  virtual std::string ImagePath(const View& view) const = 0;
   // Size of a view's depth raster, read from its header only. Throws InputError naming the file and view.
   virtual DepthRasterSize DepthSize(const View& view) const = 0;
   // A view's whole depth raster (z in the camera frame, metres; <= 0 or non-finite = invalid).

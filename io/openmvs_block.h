@@ -33,7 +33,7 @@ class OpenMvsBlock : public DepthBlock {
 
   std::string DepthMapPath(const View& view) const override;
   // The image the .dmap names, resolved against the folder (absolute paths kept; '\' read as '/').
-  std::string ImagePath(const View& view) const;
+  std::string ImagePath(const View& view) const override;
   DepthRasterSize DepthSize(const View& view) const override;
   DepthMap ReadDepthMap(const View& view) const override;
   DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override;

@@ -39,7 +39,7 @@ class RasterBlock : public DepthBlock {
 
   std::string DepthMapPath(const View& view) const override;
   // The image file, or "" when the camera file gives none (ReadImage then returns an empty raster).
-  std::string ImagePath(const View& view) const;
+  std::string ImagePath(const View& view) const override;
 
   DepthRasterSize DepthSize(const View& view) const override;
   DepthMap ReadDepthMap(const View& view) const override;

@@ -4,6 +4,7 @@
 
 #include "core/colour_resample.h"
 #include "core/error.h"
+#include "io/view_identity.h"
 #include "jobs/superpixel_cache.h"
 
 namespace sacfuse {
@@ -26,7 +27,8 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
     if (needs.superpixels) {
       bool computed = false;
       out->superpixels[i] =
-          LoadOrComputeSuperpixels(cache_dir_, view.name, image, depth, superpixel_options_, &computed);
+          LoadOrComputeSuperpixels(cache_dir_, view, image, depth, superpixel_options_, IdentifyView(input_, view),
+                                   &computed);
       out->superpixels_computed += computed ? 1 : 0;
     }
     if (needs.consistency_graphs) {

@@ -15,6 +15,7 @@ std::string FusedLasPath(const JobConfig& config) { return InOutputDir(config, "
 std::string EffectiveConfigPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.effective.yaml"); }
 std::string RunReportPath(const JobConfig& config) { return InOutputDir(config, "run_report.json"); }
 std::string LogPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.log"); }
+std::string RunStatePath(const JobConfig& config) { return InOutputDir(config, "run_state.json"); }
 std::string TilesDir(const JobConfig& config) { return InOutputDir(config, "tiles"); }
 
 }  // namespace sacfuse

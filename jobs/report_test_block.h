@@ -22,6 +22,7 @@ class MemoryDepthBlock : public DepthBlock {
   const std::string& source() const override { return source_; }
   const std::vector<View>& views() const override { return views_; }
   std::string DepthMapPath(const View& view) const override { return "memory:" + view.name; }
+  std::string ImagePath(const View& /*view*/) const override { return ""; }
   DepthRasterSize DepthSize(const View& view) const override {
     return {depths_[view.index].width, depths_[view.index].height};
   }

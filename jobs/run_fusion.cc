@@ -14,6 +14,7 @@
 #include "jobs/open_input.h"
 #include "io/las_crs.h"
 #include "io/las_writer.h"
+#include "io/view_identity.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/memory_model.h"
 #include "jobs/block_view_source.h"
@@ -25,6 +26,7 @@
 #include "jobs/tile_plan.h"
 #include "jobs/report_writer.h"
 #include "jobs/resource_usage.h"
+#include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
 #include "jobs/version.h"
@@ -139,13 +141,18 @@ void SetFusionSummary(const FusionStats& stats, RunSummary* summary) {
 // Tiled (any method): per-tile files, resume, merge (jobs/tiled_run.h).
 void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
               const std::vector<std::string>& rerun_tiles, RunSummary* summary) {
-  const TilePlan plan = SharedTilePlan(config, input);
+  const BlockIdentity identity = IdentifyBlock(input);
+  spdlog::info("input identities of {} views: {:.2f} MiB read and hashed in {:.3f} s ({:.0f} MiB/s)",
+               identity.views.size(), static_cast<double>(identity.bytes_hashed) / (1 << 20), identity.seconds,
+               identity.seconds > 0 ? static_cast<double>(identity.bytes_hashed) / (1 << 20) / identity.seconds : 0.0);
+  const TilePlan plan = SharedTilePlan(config, input, identity.views);
   CheckRerunTiles(rerun_tiles, &plan);
   spdlog::info("tiled {}: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
                config.fusion.method, plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
   const TiledRunOutcome tiled =
-      RunTiledJob(config, input, plan, rerun_tiles, MakeLasOptions(config), summary->las_path, progress);
+      RunTiledJob(config, input, plan, identity.views, rerun_tiles, MakeLasOptions(config), summary->las_path,
+                  progress);
   SetFusionSummary(tiled.stats, summary);
   summary->superpixels_computed = tiled.superpixels_computed;
   summary->superpixel_seconds = tiled.superpixel_seconds;
@@ -222,6 +229,7 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ProcessCpuSeconds();
   std::filesystem::create_directories(config.output.dir);
+  RemoveTemporaryFilesOfKilledRuns(config);
 
   RunSummary summary;
   summary.method = config.fusion.method;
@@ -267,12 +275,11 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.cpu_seconds = ProcessCpuSeconds() - cpu_start;
   summary.peak_rss_mib = PeakRssMiB();
+  if (!summary.failed_tiles.empty()) return summary;  // the previous run's outputs stay (jobs/run_state.h)
   WriteRunReport(summary, config);
   WriteHtmlReportOrWarn(config);  // DIR/report/index.html; a failure is only a warning
-  if (summary.failed_tiles.empty()) {
-    spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
-                 summary.wall_seconds, summary.peak_rss_mib);
-  }
+  spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
+               summary.wall_seconds, summary.peak_rss_mib);
   return summary;
 }
 

@@ -49,7 +49,9 @@ struct RunSummary {
 // Called as work proceeds: stage name, units done, units total.
 using RunProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
-// Runs one job. Throws InputError/ConfigError/Error with context; never leaves a partial fused.las.
+// Runs one job. Throws InputError/ConfigError/Error with context; never leaves a partial fused.las, and replaces
+// fused.las, run_report.json and the HTML report only when it has the new ones (a run with failed tiles writes
+// none of them). Deletes the temporary files of killed runs first (jobs/run_state.h).
 // Tiled runs resume (jobs/tiled_run.h): `rerun_tiles` names tiles to recompute even when done (ConfigError
 // naming any id that is not a tile with views, or when the run is not tiled); a tile that fails is listed in
 // failed_tiles and the job returns without merging.

@@ -1,11 +1,17 @@
 #pragma once
 // Superpixels are computed once per view and stored on disk (io/superpixel_io.h); later runs, and later the
-// tiles of one run, reuse them when the options fingerprint and raster size match.
+// tiles of one run, reuse them when the options fingerprint and raster size match and the view's inputs are the
+// ones they were made from. Beside each cache file, "<image>.inputs-spx.json" / ".inputs-rgb.json" records the view's identity
+// (io/view_identity.h) when the file was written and the identity of the cache file itself: a cache is current
+// only when the inputs it depends on (superpixels: depth map and image; colours: image) are unchanged and the
+// file is the one written then (a cache file edited, truncated or replaced afterwards is recomputed).
 #include <string>
 
 #include "config/job_config.h"
 #include "core/raster.h"
 #include "core/superpixels.h"
+#include "core/view.h"
+#include "io/view_identity.h"
 
 namespace sacfuse {
 
@@ -15,20 +21,36 @@ std::string SuperpixelCacheDir(const JobConfig& config);
 // Cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.spx").
 std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name);
 
-// Whether a readable cache file exists for this image with the options fingerprint and raster size given.
-bool SuperpixelCacheIsCurrent(const std::string& cache_dir, const std::string& image_name, int width, int height,
-                              const SuperpixelOptions& options);
+// Whether a cache is current, and why not.
+struct CacheCheck {
+  bool current = false;
+  bool inputs_changed = false;  // not current because the view's inputs changed (reason says how)
+  std::string reason;           // "" when current, or when there is simply no cache yet
+};
 
-// Loads the cached superpixels of a view, or computes and stores them. `*computed` tells which happened.
-SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const std::string& image_name,
-                                       const RgbImage& image, const DepthMap& depth,
-                                       const SuperpixelOptions& options, bool* computed = nullptr);
+// The superpixel cache of `view` against the options fingerprint, raster size and the view's `inputs`.
+CacheCheck CheckSuperpixelCache(const std::string& cache_dir, const View& view, int width, int height,
+                                const SuperpixelOptions& options, const ViewIdentity& inputs);
+
+// Loads the cached superpixels of a view, or computes and stores them (with their input record). A cache whose
+// inputs changed is recomputed and the change logged; one that cannot be read (a corrupt body) is recomputed
+// with a warning. `*computed` tells which happened.
+SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view, const RgbImage& image,
+                                       const DepthMap& depth, const SuperpixelOptions& options,
+                                       const ViewIdentity& inputs, bool* computed = nullptr);
 
 // Colour cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.rgb"): the image resampled to
 // the depth raster (io/colour_raster_io.h), written by the superpixel pass so tiles read colour windows.
 std::string ColourCachePath(const std::string& cache_dir, const std::string& image_name);
 
-// Whether a readable colour cache of width x height exists for this image.
-bool ColourCacheIsCurrent(const std::string& cache_dir, const std::string& image_name, int width, int height);
+// The colour cache of `view` against the raster size and the view's image identity.
+CacheCheck CheckColourCache(const std::string& cache_dir, const View& view, int width, int height,
+                            const ViewIdentity& inputs);
+// Writes the colour cache of `view` (`colours` on its depth grid) and its input record.
+void WriteColourCache(const std::string& cache_dir, const View& view, const RgbImage& colours,
+                      const ViewIdentity& inputs);
+
+// Logs why a cache is not current (an input change at info, a damaged cache as a warning) naming the view.
+void LogCacheCheck(const CacheCheck& check, const View& view, const char* what);
 
 }  // namespace sacfuse

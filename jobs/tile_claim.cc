@@ -102,12 +102,14 @@ std::optional<TileClaimInfo> ReadTileClaim(const std::string& tiles_dir, const s
   return ParseClaim(ReadText(path));
 }
 
+bool ProcessIsGone(const std::string& host, int64_t pid) {
+  if (host != ThisHostName() || pid <= 0) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
 bool ClaimIsStale(const TileClaimInfo& claim, double timeout_s) {
   if (static_cast<double>(NowUnixS() - claim.start_unix_s) > timeout_s) return true;
-  if (claim.host == ThisHostName() && claim.pid > 0) {
-    return ::kill(static_cast<pid_t>(claim.pid), 0) != 0 && errno == ESRCH;
-  }
-  return false;
+  return ProcessIsGone(claim.host, claim.pid);
 }
 
 std::string DescribeClaim(const TileClaimInfo& claim) {

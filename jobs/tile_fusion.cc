@@ -13,34 +13,32 @@ namespace sacfuse {
 namespace {
 
 // Computes and caches a view's superpixels (when `with_superpixels`) and its colours on the depth grid unless
-// those caches exist (then nothing is read).
+// those caches are current for the view's `inputs` (then nothing is read).
 bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRasterSize& size,
-                      const SuperpixelOptions& options, const std::string& cache_dir, bool with_superpixels) {
-  const bool spx_ok =
-      !with_superpixels || SuperpixelCacheIsCurrent(cache_dir, view.name, size.width, size.height, options);
-  const bool rgb_ok = ColourCacheIsCurrent(cache_dir, view.name, size.width, size.height);
-  if (spx_ok && rgb_ok) return false;
+                      const SuperpixelOptions& options, const std::string& cache_dir, bool with_superpixels,
+                      const ViewIdentity& inputs) {
+  const CacheCheck spx = with_superpixels
+                             ? CheckSuperpixelCache(cache_dir, view, size.width, size.height, options, inputs)
+                             : CacheCheck{true, false, ""};
+  const CacheCheck rgb = CheckColourCache(cache_dir, view, size.width, size.height, inputs);
+  if (spx.current && rgb.current) return false;
+  if (!rgb.current && (spx.current || spx.reason != rgb.reason)) LogCacheCheck(rgb, view, "colours");
   const RgbImage image = input.ReadImage(view);
-  if (!with_superpixels) {  // colours only: no depth needed
-    if (!image.empty()) {
-      WriteColourRaster(ColourCachePath(cache_dir, view.name), ResampleColourToDepthGrid(image, size.width, size.height));
-    }
-    return false;
+  if (!rgb.current && !image.empty()) {
+    WriteColourCache(cache_dir, view, ResampleColourToDepthGrid(image, size.width, size.height), inputs);
   }
+  if (spx.current) return false;  // colours only: no depth needed
   const DepthMap depth = input.ReadDepthMap(view);
   bool computed = false;
-  if (!spx_ok) LoadOrComputeSuperpixels(cache_dir, view.name, image, depth, options, &computed);
-  if (!rgb_ok && !image.empty()) {
-    WriteColourRaster(ColourCachePath(cache_dir, view.name), ResampleColourToDepthGrid(image, size.width, size.height));
-  }
+  LoadOrComputeSuperpixels(cache_dir, view, image, depth, options, inputs, &computed);
   return computed;
 }
 
 }  // namespace
 
 size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
-                              const std::string& superpixel_cache_dir, const SacProgress& progress,
-                              const PlannedTile* only_tile, bool with_superpixels) {
+                              const std::string& superpixel_cache_dir, const std::vector<ViewIdentity>& inputs,
+                              const SacProgress& progress, const PlannedTile* only_tile, bool with_superpixels) {
   const auto& views = input.views();
   std::vector<size_t> todo;
   if (only_tile == nullptr) {
@@ -52,7 +50,7 @@ size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, con
   for (size_t i = 0; i < todo.size(); ++i) {
     const size_t v = todo[i];
     computed += EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir,
-                                 with_superpixels) ? 1 : 0;
+                                 with_superpixels, inputs.at(v)) ? 1 : 0;
     if (progress) progress("superpixels", i + 1, todo.size());
   }
   return computed;

@@ -10,6 +10,7 @@
 #include "core/point.h"
 #include "core/sac_fusion.h"
 #include "io/depth_block.h"
+#include "io/view_identity.h"
 #include "jobs/cluster_table_cache.h"
 #include "jobs/fuse_views.h"
 #include "jobs/tile_plan.h"
@@ -17,10 +18,12 @@
 namespace sacfuse {
 
 // Computes the superpixel and colour caches of every view (only the views of `only_tile` when given) that lacks a
-// current one (nothing is read for the others); returns how many superpixel files were computed.
+// current one for the view's identity `inputs` (by view index; io/view_identity.h), logging why (nothing is read
+// for the others); returns how many superpixel files were computed.
 // `with_superpixels` false: the colour caches only (methods that do not read superpixels: FusionNeeds).
 size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
-                              const std::string& superpixel_cache_dir, const SacProgress& progress = {},
+                              const std::string& superpixel_cache_dir, const std::vector<ViewIdentity>& inputs,
+                              const SacProgress& progress = {},
                               const PlannedTile* only_tile = nullptr, bool with_superpixels = true);
 
 // Runs fusion.method on one tile (which must have views) and writes the points of its core to `sink`. Needs the

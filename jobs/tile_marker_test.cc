@@ -1,5 +1,7 @@
 #include "jobs/tile_marker.h"
 
+#include "io/atomic_file.h"
+
 #include <filesystem>
 #include <fstream>
 
@@ -104,8 +106,10 @@ TEST_F(TileMarkerTest, FailedMarkerAndClearingAndTemporaryFiles) {
   EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
   std::ofstream(Las() + ".tmp-123-0") << "partial";
   std::ofstream(dir_ / "keep.las") << "x";
-  EXPECT_EQ(RemoveTemporaryFiles(Dir()), 1u);
+  std::ofstream(dir_ / "notes.tmp-draft") << "not ours";  // not the TemporaryPathFor pattern: kept
+  EXPECT_EQ(RemoveTemporaryFiles(Dir()), std::vector<std::string>{Las() + ".tmp-123-0"});
   EXPECT_TRUE(fs::exists(dir_ / "keep.las"));
+  EXPECT_TRUE(fs::exists(dir_ / "notes.tmp-draft"));
 }
 
 }  // namespace

@@ -83,7 +83,8 @@ TilePlan BuildTilePlan(const DepthBlock& input, const TilingOptions& options) {
   return plan;
 }
 
-std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const std::string& config_hash) {
+std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const std::string& config_hash,
+                         const std::string& inputs_hash) {
   nlohmann::json tiles = nlohmann::json::array();
   for (const PlannedTile& t : plan.tiles) {
     nlohmann::json views = nlohmann::json::array();
@@ -115,14 +116,17 @@ std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const st
                             {"tiles", tiles}};
   nlohmann::json out = j;
   if (!config_hash.empty()) out["config_hash"] = config_hash;
+  if (!inputs_hash.empty()) out["inputs_hash"] = inputs_hash;
   return out.dump(2) + "\n";
 }
 
-TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, std::string* plan_path) {
+TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, const std::vector<ViewIdentity>& identities,
+                        std::string* plan_path) {
   TilePlan plan = BuildTilePlan(input, config.tiling);
   const std::string hash = ResultSettingsHash(config);
+  const std::string inputs_hash = IdentitiesDigest(identities);
   const std::string path = (std::filesystem::path(config.output.dir) / "plan.json").string();
-  const std::string text = TilePlanJson(plan, input, hash);
+  const std::string text = TilePlanJson(plan, input, hash, inputs_hash);
   if (plan_path != nullptr) *plan_path = path;
   std::ifstream in(path);
   nlohmann::json existing;
@@ -133,7 +137,10 @@ TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, std::s
       existing = nullptr;  // half-written by hand or foreign: rewrite
     }
   }
-  if (existing.is_object() && existing.value("config_hash", "") == hash) {
+  const bool same_settings = existing.is_object() && existing.value("config_hash", "") == hash;
+  if (same_settings && existing.value("inputs_hash", "") != inputs_hash) {
+    spdlog::info("plan: the inputs changed since {} was written: re-planned", path);
+  } else if (same_settings) {
     nlohmann::json mine = nlohmann::json::parse(text);
     mine.erase("version");
     existing.erase("version");
@@ -155,7 +162,7 @@ TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
   ValidateJobConfig(given);
   const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan", given.crs);
   const JobConfig config = ResolveTiling(given, *input);
-  return SharedTilePlan(config, *input, plan_path);
+  return SharedTilePlan(config, *input, IdentifyBlock(*input).views, plan_path);
 }
 
 }  // namespace sacfuse

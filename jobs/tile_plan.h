@@ -8,6 +8,7 @@
 
 #include "config/job_config.h"
 #include "io/depth_block.h"
+#include "io/view_identity.h"
 #include "tiling/tile_grid.h"
 #include "tiling/tile_windows.h"
 
@@ -48,14 +49,18 @@ void BlockHeightRange(std::vector<double> heights_m, const TilingOptions& option
 // The plan of a workspace (reads only depth-map headers). Throws InputError when no view has a footprint.
 TilePlan BuildTilePlan(const DepthBlock& input, const TilingOptions& options);
 
-// JSON text of a plan (view names included; `config_hash`, the config's ResultSettingsHash, when not empty).
-std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const std::string& config_hash = "");
+// JSON text of a plan (view names included; `config_hash`, the config's ResultSettingsHash, and `inputs_hash`,
+// IdentitiesDigest of the views' identities, when not empty).
+std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const std::string& config_hash = "",
+                         const std::string& inputs_hash = "");
 
 // The plan shared by every worker of a job (`run`, `tile`, `merge`, `plan`): when <output.dir>/plan.json exists
-// with the config's hash it is used: the plan is rebuilt (deterministic, headers only) and must equal it, else
-// Error (delete plan.json after changing inputs by hand); otherwise this worker writes it atomically (racing
+// with the config's hash and the inputs' digest (`identities`: every view's, io/view_identity.h) it is used: the
+// plan is rebuilt (deterministic, headers only) and must equal it, else Error; when the inputs changed (a pose,
+// a depth map...) it is re-planned and rewritten (logged); otherwise this worker writes it atomically (racing
 // writers produce the same content). *plan_path receives the file.
-TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, std::string* plan_path = nullptr);
+TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, const std::vector<ViewIdentity>& identities,
+                        std::string* plan_path = nullptr);
 
 // `sacfuse plan`: validates the config, opens the workspace, resolves an automatic tile size (a block that runs
 // untiled gets the one-tile plan) and returns SharedTilePlan.

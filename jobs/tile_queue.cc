@@ -52,7 +52,8 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   JobConfig config;
   const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config);
   const ThreadLimit thread_limit(EffectiveThreads(config));
-  const TilePlan plan = SharedTilePlan(config, *input);
+  const BlockIdentity identity = IdentifyBlock(*input);
+  const TilePlan plan = SharedTilePlan(config, *input, identity.views);
   const PlannedTile* tile = nullptr;
   for (const PlannedTile& t : plan.tiles) {
     if (t.id == id && !t.views.empty()) tile = &t;
@@ -60,21 +61,24 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   if (tile == nullptr) {
     throw ConfigError("--id " + id + ": not a tile with views of this job (see `sacfuse plan CONFIG --list`)");
   }
-  const TileJob job{config, *input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config)};
+  const TileJob job{config, *input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
+                    identity.views};
   fs::create_directories(job.tiles_dir);
-  if (VerifyTileDone(job.tiles_dir, id, job.hash).done) return {};
+  const TileInputs inputs = TileInputsOf(*tile, input->views(), identity.views);
+  if (VerifyTileDone(job.tiles_dir, id, job.hash, true, &inputs).done) return {};
   RecordTiledRunState(config, plan, job.las, 1);
-  std::error_code ec;
-  fs::remove(FusedLasPath(config), ec);  // stale until the tiles are merged again
   return WorkOnTile(job, *tile, /*forced=*/false, nullptr, nullptr);
 }
 
-std::vector<std::string> MissingTiles(const JobConfig& config, const TilePlan& plan) {
+std::vector<std::string> MissingTiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                                      const std::vector<ViewIdentity>& identities) {
   const std::string tiles_dir = TilesDir(config);
   const std::string hash = ResultSettingsHash(config);
   std::vector<std::string> missing;
-  for (const std::string& id : TileIdsWithViews(plan)) {
-    if (!VerifyTileDone(tiles_dir, id, hash).done) missing.push_back(id);
+  for (const PlannedTile& tile : plan.tiles) {
+    if (tile.views.empty()) continue;
+    const TileInputs inputs = TileInputsOf(tile, input.views(), identities);
+    if (!VerifyTileDone(tiles_dir, tile.id, hash, true, &inputs).done) missing.push_back(tile.id);
   }
   return missing;
 }
@@ -98,10 +102,11 @@ MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const L
 MergeJobOutcome MergeJob(const JobConfig& given) {
   JobConfig config;
   const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config);
-  const TilePlan plan = SharedTilePlan(config, *input);
+  const BlockIdentity identity = IdentifyBlock(*input);
+  const TilePlan plan = SharedTilePlan(config, *input, identity.views);
   MergeJobOutcome out;
   out.fused_las_path = FusedLasPath(config);
-  out.missing = MissingTiles(config, plan);
+  out.missing = MissingTiles(config, *input, plan, identity.views);
   if (!out.missing.empty()) return out;
   out.merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), out.fused_las_path);
   return out;

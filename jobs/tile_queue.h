@@ -10,6 +10,7 @@
 
 #include "config/job_config.h"
 #include "io/las_writer.h"
+#include "io/view_identity.h"
 #include "core/sac_fusion.h"
 #include "jobs/tile_merge.h"
 #include "jobs/tile_plan.h"
@@ -18,12 +19,14 @@
 namespace sacfuse {
 
 // Computes tile `id` (a tile with views of the shared plan, else ConfigError) unless it is done or claimed by a
-// live worker (jobs/tile_worker.h); the claim is removed when the tile is done or failed. Computing removes
-// DIR/fused.las (stale).
+// live worker (jobs/tile_worker.h); the claim is removed when the tile is done or failed. DIR/fused.las stays
+// (the previous merge) until `sacfuse merge` replaces it.
 TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id);
 
-// Tiles with views whose done marker does not verify (full checksum), grid order.
-std::vector<std::string> MissingTiles(const JobConfig& config, const TilePlan& plan);
+// Tiles with views whose done marker does not verify (full checksum, and inputs against `identities`, by view
+// index), grid order.
+std::vector<std::string> MissingTiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                                      const std::vector<ViewIdentity>& identities);
 
 // Streams the done tiles' LAS files, grid order, into `fused_las_path`; `las.offset` must be the plan's shared
 // offset. Throws Error when a tile with views has no done marker.

@@ -27,21 +27,23 @@ TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool for
   }
   TileClaimGuard guard(job.tiles_dir, tile.id, claim.token);
   if (claim.took_over) spdlog::warn("tile {}: took over a stale claim", tile.id);
-  if (!forced && VerifyTileDone(job.tiles_dir, tile.id, job.hash).done) {
+  const TileInputs inputs = TileInputsOf(tile, job.input.views(), job.identities);
+  if (!forced && VerifyTileDone(job.tiles_dir, tile.id, job.hash, true, &inputs).done) {
     spdlog::info("tile {}: done by another worker", tile.id);
     return out;
   }
   try {
     if (!job.caches_ready) {
       const bool superpixels = MakeFusionMethod(job.config.fusion)->needs().superpixels;
-      EnsureTiledSuperpixels(job.input, job.plan, job.config.fusion.sac, SuperpixelCacheDir(job.config), {}, &tile,
-                             superpixels);
+      EnsureTiledSuperpixels(job.input, job.plan, job.config.fusion.sac, SuperpixelCacheDir(job.config),
+                             job.identities, {}, &tile, superpixels);
     }
     CheckTileFitsBudget(tile, job.config);
     std::optional<MemoryReservation> reservation;
     if (admission != nullptr) reservation.emplace(*admission, MethodTileBytes(tile, job.config.fusion));
     out.fused =
-        ComputeTileFiles(job.config, job.input, job.plan, tile, job.las, job.tiles_dir, job.hash, cluster_cache);
+        ComputeTileFiles(job.config, job.input, job.plan, tile, job.las, job.tiles_dir, job.hash, inputs,
+                         cluster_cache);
     reservation.reset();
     out.result = TileWork::kComputed;
     spdlog::info("tile {}: {} views, {} points in its core, {} left to neighbours", tile.id, tile.views.size(),

@@ -4,10 +4,12 @@
 // done marker verifies, make the caches its views lack, check the memory guard, compute its LAS and done marker
 // (jobs/tiled_run.h ComputeTileFiles), or write its failed marker.
 #include <string>
+#include <vector>
 
 #include "config/job_config.h"
 #include "io/depth_block.h"
 #include "io/las_writer.h"
+#include "io/view_identity.h"
 #include "jobs/cluster_table_cache.h"
 #include "jobs/fuse_views.h"
 #include "jobs/memory_admission.h"
@@ -23,6 +25,7 @@ struct TileJob {
   LasWriterOptions las;   // with the plan's shared offset
   std::string tiles_dir;  // DIR/tiles
   std::string hash;       // ResultSettingsHash(config)
+  const std::vector<ViewIdentity>& identities;  // of every view (io/view_identity.h), by view index
   bool caches_ready = false;  // every view's superpixel and colour caches were made before the tiles (run)
 };
 

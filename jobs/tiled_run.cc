@@ -90,8 +90,8 @@ void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const La
 }
 
 FusedViews ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
-                                  const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
-                                  const std::string& hash, ClusterTableCache* cluster_cache) {
+                            const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
+                            const std::string& hash, const TileInputs& inputs, ClusterTableCache* cluster_cache) {
   spdlog::info("computing tile {} (pid {})", tile.id, static_cast<long>(::getpid()));
   ClearTileState(tiles_dir, tile.id);
   const auto start = std::chrono::steady_clock::now();
@@ -108,6 +108,7 @@ FusedViews ComputeTileFiles(const JobConfig& config, const DepthBlock& input, co
   TileDoneMarker marker = DescribeTileLas(tiles_dir, tile.id, has_las);
   marker.config_hash = hash;
   marker.views = tile.views.size();
+  marker.inputs = inputs;
   marker.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   marker.peak_rss_mib = PeakRssMiB();
   WriteTileDoneMarker(tiles_dir, marker);
@@ -140,6 +141,7 @@ std::vector<std::string> TileIdsWithViews(const TilePlan& plan) {
 }
 
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                            const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, LasWriterOptions las_options,
                             const std::string& fused_las_path, const SacProgress& progress) {
   const FusionNeeds needs = MakeFusionMethod(config.fusion)->needs();
@@ -149,12 +151,7 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   const std::string tiles_dir = TilesDir(config);
   const double claim_timeout_s = config.tiling.claim_timeout_s;
   fs::create_directories(tiles_dir);
-  if (AnyLiveTileClaim(tiles_dir, claim_timeout_s)) {
-    spdlog::info("other workers hold tile claims: leaving temporary files alone");
-  } else {
-    const size_t temps = RemoveTemporaryFiles(tiles_dir) + RemoveTemporaryFiles(config.output.dir) +
-                         RemoveTemporaryFiles(SuperpixelCacheDir(config), /*recursive=*/true);
-    if (temps > 0) spdlog::info("removed {} half-written files left by an interrupted run", temps);
+  if (!AnyLiveTileClaim(tiles_dir, claim_timeout_s)) {
     const size_t claims = RemoveStaleTileClaims(tiles_dir, claim_timeout_s);
     if (claims > 0) spdlog::info("removed {} stale tile claims left by killed workers", claims);
   }
@@ -166,6 +163,8 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   TiledRunOutcome out;
   const std::set<std::string> rerun(rerun_ids.begin(), rerun_ids.end());
   std::vector<const PlannedTile*> todo;
+  std::set<std::string> changed_views;  // "view 12 (a.jpg): depth map changed (...)", from the tiles' markers
+  std::vector<std::string> rerun_for_inputs;
   for (const PlannedTile& tile : plan.tiles) {
     if (tile.views.empty()) continue;
     ++out.tiles_with_views;
@@ -174,23 +173,34 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
       todo.push_back(&tile);
       continue;
     }
-    const TileCheck check = VerifyTileDone(tiles_dir, tile.id, hash);
+    const TileInputs inputs = TileInputsOf(tile, input.views(), identities);
+    const TileCheck check = VerifyTileDone(tiles_dir, tile.id, hash, true, &inputs);
     if (check.done) {
       spdlog::info("tile {}: done, skipped", tile.id);
       ++out.tiles_skipped;
+    } else if (!check.input_changes.empty()) {
+      spdlog::info("tile {}: recomputed: {}", tile.id, check.reason);
+      changed_views.insert(check.input_changes.begin(), check.input_changes.end());
+      rerun_for_inputs.push_back(tile.id);
+      todo.push_back(&tile);
     } else {
       spdlog::debug("tile {}: to compute ({})", tile.id, check.reason);
       todo.push_back(&tile);
     }
   }
+  if (!rerun_for_inputs.empty()) {
+    for (const std::string& change : changed_views) spdlog::info("input changed: {}", change);
+    std::string ids;
+    for (const std::string& id : rerun_for_inputs) ids += (ids.empty() ? "" : ", ") + id;
+    spdlog::info("{} tiles rerun because their inputs changed: {}", rerun_for_inputs.size(), ids);
+  }
+  out.tiles_rerun_for_inputs = rerun_for_inputs;
   RecordTiledRunState(config, plan, tile_las, todo.size());
 
   if (!todo.empty()) {
-    std::error_code ec;
-    fs::remove(fused_las_path, ec);  // stale until the tiles are merged again
     const auto sp_start = std::chrono::steady_clock::now();
     out.superpixels_computed = EnsureTiledSuperpixels(input, plan, config.fusion.sac, SuperpixelCacheDir(config),
-                                                      progress, nullptr, needs.superpixels);
+                                                      identities, progress, nullptr, needs.superpixels);
     out.superpixel_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sp_start).count();
     if (needs.superpixels) {
       spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",
@@ -207,7 +217,7 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   MemoryAdmission admission(TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   std::mutex mutex;  // guards out and progress across tile workers
-  const TileJob job{config, input, plan, tile_las, tiles_dir, hash, /*caches_ready=*/true};
+  const TileJob job{config, input, plan, tile_las, tiles_dir, hash, identities, /*caches_ready=*/true};
   // Works on one tile; false when another live worker holds it.
   const auto attempt = [&](const PlannedTile& tile, bool forced) {
     const TileWorkOutcome r = WorkOnTile(job, tile, forced, &admission, &cluster_cache);
@@ -258,7 +268,8 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
     std::this_thread::sleep_for(std::chrono::seconds(1));
     std::vector<const PlannedTile*> still;
     for (const PlannedTile* t : held) {
-      if (VerifyTileDone(tiles_dir, t->id, hash).done) continue;
+      const TileInputs inputs = TileInputsOf(*t, input.views(), identities);
+      if (VerifyTileDone(tiles_dir, t->id, hash, true, &inputs).done) continue;
       // Not done and no live claim: its worker died or failed, so it is computed here.
       if (TileClaimIsLive(tiles_dir, t->id, claim_timeout_s) || !attempt(*t, false)) still.push_back(t);
     }

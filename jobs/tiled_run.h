@@ -11,9 +11,9 @@
 // holds to it and waits for them (polling every second) before merging.
 // Tiles run in parallel on up to resources.threads worker threads, each admitted only when its memory estimate
 // fits next to the tiles already running (jobs/memory_admission.h); results do not depend on the thread count.
-// A run deletes leftover "*.tmp-*" files (only when no live claim exists), skips tiles whose done marker verifies, computes the rest (a tile that
-// throws gets a failed marker; the others go on), and, when every tile with views is done, merges the tile
-// files in grid order into DIR/fused.las.
+// A run (whose caller deleted leftover temporary files: jobs/run_state.h) skips tiles whose done marker verifies
+// (settings, inputs, LAS file), computes the rest (a tile that throws gets a failed marker; the others go on),
+// and, when every tile with views is done, merges the tile files in grid order into DIR/fused.las.
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -24,6 +24,8 @@
 #include "core/sac_fusion.h"
 #include "io/depth_block.h"
 #include "io/las_writer.h"
+#include "io/view_identity.h"
+#include "jobs/tile_marker.h"
 #include "jobs/output_layout.h"
 #include "jobs/tile_plan.h"
 #include "jobs/tile_fusion.h"
@@ -39,6 +41,7 @@ struct TiledRunOutcome {
   size_t tiles_with_views = 0;
   size_t tiles_computed = 0;                                // this invocation (including failed attempts)
   size_t tiles_skipped = 0;                                 // verified done, not recomputed
+  std::vector<std::string> tiles_rerun_for_inputs;          // recomputed because their views' inputs changed
   std::vector<std::pair<std::string, std::string>> failed;  // tile id, reason
   bool merged = false;                                      // DIR/fused.las written
   uint64_t merged_points = 0;
@@ -58,16 +61,21 @@ void RecordTiledRunState(const JobConfig& config, const TilePlan& plan, const La
                          size_t tiles_to_compute);
 // Computes one tile (the caller holds its claim) into <id>.las and <id>.done.json, after clearing its old state;
 // logs "computing tile <id>". Needs the superpixel caches of the tile's views. Throws whatever the tile throws.
+// `inputs` (TileInputsOf the tile) go into the done marker.
 FusedViews ComputeTileFiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
-                                  const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
-                                  const std::string& hash, ClusterTableCache* cluster_cache = nullptr);
+                            const PlannedTile& tile, const LasWriterOptions& las, const std::string& tiles_dir,
+                            const std::string& hash, const TileInputs& inputs,
+                            ClusterTableCache* cluster_cache = nullptr);
 
 // Refuses a tile whose memory estimate exceeds what the budget leaves for tiles (the out-of-memory guard):
 // throws Error naming the tile, the estimate and the keys to change.
 void CheckTileFitsBudget(const PlannedTile& tile, const JobConfig& config);
 
-// `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done.
+// `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done; so is every tile whose
+// recorded inputs differ from `identities` (the views' current ones; logged with the views that changed).
+// fused_las_path is replaced (by a rename) only by a complete merge: a run that fails leaves the previous one.
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                            const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, LasWriterOptions las_options,
                             const std::string& fused_las_path, const SacProgress& progress = {});
 

@@ -185,7 +185,8 @@ TEST_F(ResumeEndToEndTest, DeletedTileIsPendingAndTruncatedTileIsRecomputed) {
 }
 
 // (f) A tile that throws (here: a folder squats on its LAS path, so the rename fails) gets a failed marker, the
-// other tiles go on, the run exits 1 without merging and names the rerun command; fixing it and rerunning merges.
+// other tiles go on, the run exits 1 without merging (the previous fused.laz stays) and names the rerun command;
+// fixing it and rerunning merges.
 TEST_F(ResumeEndToEndTest, FailedTileIsRecordedAndTheOthersGoOn) {
   std::string id;  // a tile with points (an empty tile writes no LAS, so nothing would fail)
   for (const auto& [tile, marker] : DoneMarkers(Tiles("a"))) {
@@ -195,14 +196,20 @@ TEST_F(ResumeEndToEndTest, FailedTileIsRecordedAndTheOthersGoOn) {
   const fs::path las = Tiles("a") / (id + ".las");
   fs::remove(las);
   fs::create_directories(las / "squatter");
+  const std::string previous = ReadFileBytes(Out("a") / "fused.laz");
+  const std::string previous_report = ReadFileBytes(Out("a") / "run_report.json");
   int code = 0;
   std::string out = Run("a", "", &code);
   EXPECT_EQ(code, 1) << out;
   EXPECT_NE(out.find("sacfuse run " + Config("a").string() + " --tiles " + id), std::string::npos) << out;
   EXPECT_TRUE(fs::exists(Tiles("a") / (id + ".failed.json")));
-  EXPECT_FALSE(fs::exists(Out("a") / "fused.laz"));
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
+  // The previous complete outputs stay, byte for byte, and the run's state says it failed (status exits 1).
+  EXPECT_TRUE(ReadFileBytes(Out("a") / "fused.laz") == previous);
+  EXPECT_TRUE(ReadFileBytes(Out("a") / "run_report.json") == previous_report);
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 1) << out;
   EXPECT_NE(out.find("failed   " + id + ": "), std::string::npos) << out;
+  EXPECT_NE(out.find("last run FAILED at "), std::string::npos) << out;
+  EXPECT_NE(out.find("tiles failed (" + id + ")"), std::string::npos) << out;
   fs::remove_all(las);
   out = Run("a", " --tiles " + id, &code);
   ASSERT_EQ(code, 0) << out;

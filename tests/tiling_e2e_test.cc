@@ -164,8 +164,11 @@ TEST_F(TilingEndToEndTest, TilesOverTheBudgetFailWithTheOutOfMemoryGuard) {
   EXPECT_NE(code, 0) << out;
   EXPECT_NE(out.find("out-of-memory guard"), std::string::npos) << out;
   EXPECT_FALSE(fs::exists(Out("guard") / "fused.laz"));
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("guard")), &out), 0) << out;
+  // The last run failed: status says so and exits 1 (jobs/run_state.h); no run ever completed, so no cloud.
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("guard")), &out), 1) << out;
   EXPECT_NE(out.find("out-of-memory guard"), std::string::npos) << out;
+  EXPECT_NE(out.find("last run FAILED at "), std::string::npos) << out;
+  EXPECT_NE(out.find("no fused.laz: no run has completed"), std::string::npos) << out;
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "config/job_config.h"
 #include "core/error.h"
 #include "jobs/report_writer.h"
+#include "jobs/run_state.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
 
@@ -36,6 +37,8 @@ int ReportCommand(const ReportArgs& args) {
   std::printf("report: %s (%.1f s: map %.1f s, cross-section %.1f s; peak RSS %.0f MiB)\n", page.c_str(),
               figures.seconds, figures.map_seconds, figures.profile_seconds, figures.peak_rss_mib);
   if (!figures.map.present) std::cout << "no map: " << figures.profile.reason << "\n";
+  const std::string run_state = DescribeRunState(config);
+  if (!run_state.empty()) std::cout << run_state << "\n";
   return kExitOk;
 }
 

@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "jobs/output_layout.h"
 #include "jobs/run_fusion.h"
+#include "jobs/run_state.h"
 #include "jobs/report_writer.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
@@ -84,22 +85,41 @@ int RunCommand(const RunArgs& args) {
     if (args.threads >= 0) config.resources.threads = args.threads;
     SetupLogging(config.log.level, LogPath(config));
     spdlog::info("effective configuration ({}):\n{}", args.config_path, DumpJobConfig(config, false));
-    ProgressPrinter progress;
-    const RunSummary summary = RunFusionJob(config, std::ref(progress), SplitIds(args.tiles));
-    if (!summary.failed_tiles.empty()) return ReportFailedTiles(summary, args);
-    if (summary.tiles_run > 0) {
-      std::cout << "tiles: " << summary.tiles_computed << " computed, " << summary.tiles_skipped
-                << " done and skipped (of " << summary.tiles_run << ")\n";
+    // DIR/run_state.json: running now; failed (with the error) or succeeded at the end (jobs/run_state.h).
+    const std::optional<RunState> previous_state = MarkRunStarted(config);
+    try {
+      ProgressPrinter progress;
+      const RunSummary summary = RunFusionJob(config, std::ref(progress), SplitIds(args.tiles));
+      if (!summary.failed_tiles.empty()) {
+        std::string ids;
+        for (const auto& [id, reason] : summary.failed_tiles) ids += (ids.empty() ? "" : ", ") + id;
+        MarkRunEnded(config, false,
+                     std::to_string(summary.failed_tiles.size()) + " of " + std::to_string(summary.tiles_run) +
+                         " tiles failed (" + ids + "): " + summary.failed_tiles.front().second);
+        return ReportFailedTiles(summary, args);
+      }
+      if (summary.tiles_run > 0) {
+        std::cout << "tiles: " << summary.tiles_computed << " computed, " << summary.tiles_skipped
+                  << " done and skipped (of " << summary.tiles_run << ")\n";
+      }
+      std::cout << "fused cloud: " << summary.las_path << " (" << summary.output_points << " points, "
+                << summary.views.size() << " views, method " << summary.method << ")\n";
+      PrintSourceViewSummary(summary, std::cout);
+      if (!config.evaluation.reference.empty()) {
+        const EvalRequest request = EvalRequestFromConfig(
+            config, summary.las_path, (std::filesystem::path(config.output.dir) / "eval.json").string());
+        RunEvaluation(request, std::cout);
+        RewriteHtmlReportPageOrWarn(config);  // the report's page again, now with eval.json's scores
+      }
+    } catch (const ConfigError&) {
+      MarkRunRefused(config, previous_state);  // refused before anything was computed: exit 2
+      throw;
+    } catch (const std::exception& e) {
+      MarkRunEnded(config, false, e.what());
+      spdlog::error("run failed: {}", e.what());
+      throw;
     }
-    std::cout << "fused cloud: " << summary.las_path << " (" << summary.output_points << " points, "
-              << summary.views.size() << " views, method " << summary.method << ")\n";
-    PrintSourceViewSummary(summary, std::cout);
-    if (!config.evaluation.reference.empty()) {
-      const EvalRequest request = EvalRequestFromConfig(
-          config, summary.las_path, (std::filesystem::path(config.output.dir) / "eval.json").string());
-      RunEvaluation(request, std::cout);
-      RewriteHtmlReportPageOrWarn(config);  // the report's page again, now with eval.json's scores
-    }
+    MarkRunEnded(config, true);
     return kExitOk;
   });
 }

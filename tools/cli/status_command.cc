@@ -1,5 +1,7 @@
-// `sacfuse status CONFIG`: which tiles of a tiled run are done, failed or pending, from DIR/tiles/ alone (the
-// manifest and the markers; no plan is built and nothing is computed). A done tile is re-checked against its
+// `sacfuse status CONFIG`: the state of the last run (DIR/run_state.json: exit code 1 when it failed or was
+// interrupted) and which tiles of a tiled run are done, failed or pending, from DIR/tiles/ alone (the
+// manifest and the markers; no plan is built, nothing is computed, and the inputs are not re-identified: a
+// changed input shows at the next run). A done tile is re-checked against its
 // LAS file's size and header count and the current config's hash; --verify also recomputes the checksums.
 // A pending tile that a live worker has claimed (jobs/tile_claim.h) names the worker.
 #include <filesystem>
@@ -15,6 +17,7 @@
 #include "config/result_settings.h"
 #include "core/error.h"
 #include "jobs/output_layout.h"
+#include "jobs/run_state.h"
 #include "jobs/tile_claim.h"
 #include "jobs/tile_marker.h"
 #include "jobs/tiled_run.h"
@@ -31,12 +34,17 @@ struct StatusArgs {
 
 int StatusCommand(const StatusArgs& args) {
   JobConfig config = LoadJobConfig(args.config_path);
+  // The last run's state first (DIR/run_state.json); a failed or interrupted run makes the exit code 1.
+  bool last_run_failed = false;
+  const std::string run_state = DescribeRunState(config, &last_run_failed);
+  if (!run_state.empty()) std::cout << run_state << "\n";
+  const int exit_code = last_run_failed ? kExitFailure : kExitOk;
   const std::string tiles_dir = TilesDir(config);
   const std::string manifest_path = (std::filesystem::path(tiles_dir) / "manifest.json").string();
   std::ifstream in(manifest_path);
   if (!in) {
     std::cout << "no tiled run has started in " << config.output.dir << " (no " << manifest_path << ")\n";
-    return kExitOk;
+    return exit_code;
   }
   const nlohmann::json manifest = nlohmann::json::parse(in);
   // tiling.tile_size_m = 0: the size the run chose from its memory budget, as recorded in the manifest.
@@ -77,7 +85,7 @@ int StatusCommand(const StatusArgs& args) {
   }
   const bool merged = std::filesystem::exists(FusedLasPath(config));
   std::cout << "fused.las: " << (merged && done.size() == total ? "merged" : "not merged") << "\n";
-  return kExitOk;
+  return exit_code;
 }
 
 }  // namespace

@@ -1,0 +1,155 @@
+#include "io/view_identity.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+
+#include <nlohmann/json.hpp>
+
+#include "io/file_checksum.h"
+#include "io/input_file.h"
+
+namespace sacfuse {
+namespace {
+
+template <typename T>
+void AppendBytes(std::string* bytes, const T& value) {
+  bytes->append(reinterpret_cast<const char*>(&value), sizeof(value));
+}
+
+nlohmann::json FileJson(const FileIdentity& f) {
+  if (!f.exists) return {{"exists", false}};
+  return {{"size", f.size}, {"mtime_ns", f.mtime_ns}, {"hash", HexDigest(f.content_hash)}};
+}
+
+FileIdentity FileFromJson(const nlohmann::json& j) {
+  FileIdentity f;
+  if (j.contains("exists") && !j.at("exists").get<bool>()) return f;
+  f.exists = true;
+  f.size = j.at("size").get<uint64_t>();
+  f.mtime_ns = j.at("mtime_ns").get<int64_t>();
+  f.content_hash = std::stoull(j.at("hash").get<std::string>(), nullptr, 16);
+  return f;
+}
+
+std::string DescribeFileChange(const char* what, const FileIdentity& before, const FileIdentity& now) {
+  if (before == now) return "";
+  if (!before.exists) return std::string(what) + " appeared";
+  if (!now.exists) return std::string(what) + " is gone";
+  std::string detail = "size " + std::to_string(before.size) + " -> " + std::to_string(now.size);
+  if (before.content_hash != now.content_hash) {
+    detail += ", content hash differs";
+  } else if (before.size == now.size) {
+    detail += ", modified time differs; sampled content equal";
+  }
+  return std::string(what) + " changed (" + detail + ")";
+}
+
+}  // namespace
+
+bool operator==(const FileIdentity& a, const FileIdentity& b) {
+  if (a.exists != b.exists) return false;
+  return !a.exists || (a.size == b.size && a.mtime_ns == b.mtime_ns && a.content_hash == b.content_hash);
+}
+
+FileIdentity IdentifyFile(const std::string& path) {
+  FileIdentity f;
+  if (path.empty()) return f;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT) return f;
+    ThrowInputOsError(path, "input file", errno);
+  }
+  CheckInputFile(path, "input file");
+  f.exists = true;
+  f.size = static_cast<uint64_t>(st.st_size);
+  f.mtime_ns = static_cast<int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
+  f.content_hash = Fnv1a64FileEdges(path, f.size, kIdentityEdgeBytes);
+  return f;
+}
+
+uint64_t CameraHash(const View& view) {
+  std::string bytes;
+  const PinholeCamera& c = view.camera;
+  AppendBytes(&bytes, c.width);
+  AppendBytes(&bytes, c.height);
+  for (const double v : {c.fx, c.fy, c.cx, c.cy}) AppendBytes(&bytes, v);
+  const Eigen::Quaterniond& q = view.cam_from_world.rotation;
+  for (const double v : {q.w(), q.x(), q.y(), q.z()}) AppendBytes(&bytes, v);
+  const Eigen::Vector3d& t = view.cam_from_world.translation;
+  for (int i = 0; i < 3; ++i) AppendBytes(&bytes, t[i]);
+  return Fnv1a64(bytes);
+}
+
+ViewIdentity IdentifyView(const DepthBlock& input, const View& view) {
+  ViewIdentity id;
+  id.depth = IdentifyFile(input.DepthMapPath(view));
+  id.image = IdentifyFile(input.ImagePath(view));
+  id.camera_hash = CameraHash(view);
+  return id;
+}
+
+BlockIdentity IdentifyBlock(const DepthBlock& input) {
+  const auto start = std::chrono::steady_clock::now();
+  BlockIdentity block;
+  for (const View& view : input.views()) {
+    block.views.push_back(IdentifyView(input, view));
+    for (const FileIdentity* f : {&block.views.back().depth, &block.views.back().image}) {
+      if (f->exists) block.bytes_hashed += std::min<uint64_t>(f->size, 2 * kIdentityEdgeBytes);
+    }
+  }
+  block.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return block;
+}
+
+std::string IdentitiesDigest(const std::vector<ViewIdentity>& identities) {
+  std::string all;
+  for (const ViewIdentity& id : identities) all += ViewIdentityJson(id) + "\n";
+  return HexDigest(Fnv1a64(all));
+}
+
+std::string DescribeViewChange(const ViewIdentity& before, const ViewIdentity& now, unsigned parts) {
+  std::string out;
+  const auto add = [&out](const std::string& change) {
+    if (!change.empty()) out += (out.empty() ? "" : "; ") + change;
+  };
+  if (parts & kDepthInput) add(DescribeFileChange("depth map", before.depth, now.depth));
+  if (parts & kImageInput) add(DescribeFileChange("image", before.image, now.image));
+  if ((parts & kCameraInput) && before.camera_hash != now.camera_hash) add("camera changed (pose or intrinsics)");
+  return out;
+}
+
+std::string ViewLabel(const View& view) { return "view " + std::to_string(view.index) + " (" + view.name + ")"; }
+
+std::string ViewIdentityJson(const ViewIdentity& id) {
+  const nlohmann::json j = {
+      {"depth", FileJson(id.depth)}, {"image", FileJson(id.image)}, {"camera", HexDigest(id.camera_hash)}};
+  return j.dump();
+}
+
+std::optional<ViewIdentity> ParseViewIdentityJson(const std::string& text) {
+  try {
+    const nlohmann::json j = nlohmann::json::parse(text);
+    ViewIdentity id;
+    id.depth = FileFromJson(j.at("depth"));
+    id.image = FileFromJson(j.at("image"));
+    id.camera_hash = std::stoull(j.at("camera").get<std::string>(), nullptr, 16);
+    return id;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+std::string FileIdentityJson(const FileIdentity& identity) { return FileJson(identity).dump(); }
+
+std::optional<FileIdentity> ParseFileIdentityJson(const std::string& text) {
+  try {
+    return FileFromJson(nlohmann::json::parse(text));
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace sacfuse
