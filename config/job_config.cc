@@ -74,6 +74,16 @@ ConfigSchema MakeSchema(JobConfig* c) {
   s.AddDouble("fusion.displacement_weight", &f.displacement_weight, "quality unary: weight of node displacement");
   s.AddDouble("fusion.smoothness_weight", &f.smoothness_weight, "smoothness between adjacent clusters (0 = off)");
   s.AddInt("fusion.smoothness_rounds", &f.smoothness_rounds, "rounds of that smoothness");
+  s.AddString("fusion.collapse", &f.collapse,
+              "collapse: netlet (drop pixels the Netlet's chosen view emits) | best_view (also those a more precise "
+              "view holds)",
+              {"netlet", "best_view"});
+  s.AddDouble("fusion.redundancy_tolerance_sigmas", &f.redundancy_tolerance_sigmas,
+              "best_view: 'same surface' also within this many sigmas of estimated noise (0 = strict tolerance)");
+  s.AddInt("fusion.free_space_min_views", &f.free_space_min_views,
+           "free space: drop points that at least this many views see through (0 = off)");
+  s.AddDouble("fusion.free_space_sigmas", &f.free_space_sigmas,
+              "free space: 'sees through' beyond this many sigmas of the estimated noise");
   s.AddInt("fusion.min_consistent_views", &f.min_consistent_views,
            "outliers: min views (own included) agreeing with a point");
   s.AddDouble("fusion.outlier_expected_factor", &f.outlier_expected_factor,

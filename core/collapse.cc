@@ -6,6 +6,8 @@
 #include <tbb/parallel_for.h>
 
 #include "core/depth_combine.h"
+#include "core/method_views.h"
+#include "core/redundancy.h"
 #include "core/sac_tolerance.h"
 
 namespace sacfuse {
@@ -34,8 +36,9 @@ bool CoverageAgrees(const std::vector<SacView>& views, uint32_t v, double d, uin
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
                        const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
                        const std::vector<std::vector<uint32_t>>& combine_views,
-                       const std::vector<double>& noise_factor, const SacOptions& options,
-                       const std::function<bool(const Eigen::Vector3d&)>& owner, PointSink& sink) {
+                       const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
+                       const SacOptions& options, const std::function<bool(const Eigen::Vector3d&)>& owner,
+                       PointSink& sink) {
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
   const int num_blocks = (depth.height + kRowsPerBlock - 1) / kRowsPerBlock;
@@ -44,6 +47,9 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   DepthCombineOptions combine_options;
   combine_options.gate_gsd = options.combine_gate_gsd;
   combine_options.gate_sigmas = options.combine_gate_sigmas;
+  // The views that judge redundancy: the combine views (up to 40), else the neighbour views.
+  const std::vector<uint32_t>& judges = combine_views[v].empty() ? neighbors[v] : combine_views[v];
+  const bool best_view = options.collapse == "best_view";
   std::vector<std::vector<FusedPoint>> block_points(kBlocksPerBatch);
   std::vector<CollapseStats> block_stats(kBlocksPerBatch);
 
@@ -55,8 +61,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
       for (int col = 0; col < depth.width; ++col) {
         const float d = depth.at(row, col);
         if (!IsValidDepth(d)) continue;
-        const Eigen::Vector3d point =
-            view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, static_cast<double>(d));
+        const Eigen::Vector3d point = PixelPoint(view, row, col, d);
         if (owner && !owner(point)) {
           ++stats.not_owned;
           continue;
@@ -72,6 +77,8 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
             const SacView& tv = views[target];
             const DepthLookup hit = LookupDepth(tv, point);
             if (!CoverageAgrees(views, v, d, target, hit, noise_factor, options)) break;
+            // The target's pixel must itself be emitted (not an outlier, not in free space).
+            if (verdicts.At(target, *tv.depth, hit.row, hit.col) != PointVerdict::kPasses) break;
             const uint32_t next =
                 chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
             if (next == target) {
@@ -86,43 +93,19 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           }
           ++stats.kept_uncovered;
         }
-        if (options.min_consistent_views > 1) {
-          // Views that can observe the point: they agree, or they see through it (free space). Views where it is
-          // occluded (their surface lies in front) cannot judge it and are not counted.
-          int agree = 1, observers = 0;
-          // With estimated noise: how many observers should agree, sum of P(|difference| <= tolerance).
-          double expected_agree = 0.0;
-          const bool noise_aware = !noise_factor.empty() && options.outlier_expected_factor > 0;
-          const double sigma_own = noise_aware ? DepthSigmaM(views, noise_factor, v, d) : 0.0;
-          for (const uint32_t b : neighbors[v]) {
-            const DepthLookup hit = LookupDepth(views[b], point);
-            if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
-            const double tolerance = DepthToleranceM(views[b], hit.z_m, options);
-            bool observes = false;
-            if (std::abs(hit.stored_depth_m - hit.z_m) <= tolerance) {
-              ++agree;
-              observes = true;
-            } else if (hit.stored_depth_m > hit.z_m + tolerance) {
-              observes = true;
-            }
-            if (!observes) continue;
-            ++observers;
-            if (noise_aware) {
-              const double sigma_b = DepthSigmaM(views, noise_factor, b, hit.z_m);
-              expected_agree += std::erf(tolerance / (std::hypot(sigma_own, sigma_b) * std::sqrt(2.0)));
-            }
-          }
-          int required = std::min(options.min_consistent_views, std::max(2, 1 + observers));
-          if (noise_aware) {
-            // Noisy depth maps rarely agree within the strict tolerance: ask no more than the noise lets agree.
-            required = std::min(required,
-                                std::max(2, 1 + static_cast<int>(std::lround(options.outlier_expected_factor *
-                                                                             expected_agree))));
-          }
-          if (agree < required) {
-            ++stats.outliers;
-            continue;
-          }
+        const PointVerdict verdict = verdicts.At(v, depth, row, col);
+        if (verdict == PointVerdict::kOutlier) {
+          ++stats.outliers;
+          continue;
+        }
+        if (verdict == PointVerdict::kFreeSpace) {
+          ++stats.free_space;
+          continue;
+        }
+        if (best_view && BetterViewEmits(views, v, point, d, judges, noise_factor, nodes, chosen_view, verdicts,
+                                         options)) {
+          ++stats.redundant;
+          continue;
         }
         FusedPoint p;
         p.point_in_world = point;

@@ -7,18 +7,15 @@
 // the tolerance, or — with estimated noise — within coverage_tolerance_sigmas sigma of the two depths' difference), and
 // the cluster there chose L itself — or chose L2, and the same holds in L2 (up to 4 hops, never back to a).
 // Otherwise the pixel is emitted from its own view. So no surface patch observed consistently is lost.
-// Outliers: an emitted point must agree with min(min_consistent_views, max(2, 1 + observers)) depth maps (its own
-// included) among its view's neighbours, where observers are the neighbours that agree or see through the point
-// (free space); neighbours in which it is occluded cannot judge it. So blunders, floaters and points seen by one
-// view only are removed, while surfaces that only two views can see are kept when those two agree. With estimated
-// noise (combine: average) the requirement is also capped at max(2, 1 + round(outlier_expected_factor x E)), E the
-// expected number of agreeing observers, sum of erf(tolerance / (sqrt(2) sigma of the two depths' difference)):
-// low-noise blocks keep the strict count, noisy ones are not asked for agreement the noise does not allow.
+// The target's pixel must also pass the point tests (core/point_verdicts.h), so no pixel is dropped in favour of an
+// outlier. Then the pixel's own verdict: outliers and points in free space are dropped; with `collapse: best_view`
+// so are pixels a more precise view emits (core/redundancy.h).
 #include <cstdint>
 #include <functional>
 #include <vector>
 
 #include "core/point.h"
+#include "core/point_verdicts.h"
 #include "core/sac_nodes.h"
 #include "core/sac_options.h"
 #include "core/sac_view.h"
@@ -29,6 +26,8 @@ struct CollapseStats {
   uint64_t input_pixels = 0;      // valid depth pixels (that the owner accepts)
   uint64_t collapsed = 0;         // dropped: covered by the view their cluster chose
   uint64_t kept_uncovered = 0;    // their cluster chose another view, which does not emit them: kept (coverage)
+  uint64_t redundant = 0;         // dropped: a more precise view holds the same surface (collapse: best_view)
+  uint64_t free_space = 0;        // dropped: more views observed its place as empty than agree with it
   uint64_t outliers = 0;          // dropped: too few consistent views
   uint64_t emitted = 0;
   uint64_t not_owned = 0;         // valid pixels the owner rejected (another tile's), not counted above
@@ -36,6 +35,8 @@ struct CollapseStats {
     input_pixels += o.input_pixels;
     collapsed += o.collapsed;
     kept_uncovered += o.kept_uncovered;
+    redundant += o.redundant;
+    free_space += o.free_space;
     outliers += o.outliers;
     emitted += o.emitted;
     not_owned += o.not_owned;
@@ -50,7 +51,8 @@ struct CollapseStats {
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
                        const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
                        const std::vector<std::vector<uint32_t>>& combine_views,
-                       const std::vector<double>& noise_factor, const SacOptions& options,
-                       const std::function<bool(const Eigen::Vector3d&)>& owner, PointSink& sink);
+                       const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
+                       const SacOptions& options, const std::function<bool(const Eigen::Vector3d&)>& owner,
+                       PointSink& sink);
 
 }  // namespace sacfuse

@@ -49,6 +49,8 @@ FusionStats FromSacStats(const SacStats& s) {
   out.Count("pixels_in", s.collapse.input_pixels);
   out.Count("pixels_collapsed", s.collapse.collapsed);
   out.Count("pixels_kept_uncovered", s.collapse.kept_uncovered);
+  out.Count("pixels_redundant", s.collapse.redundant);
+  out.Count("pixels_free_space", s.collapse.free_space);
   out.Count("pixels_outliers", s.collapse.outliers);
   out.Count("pixels_not_owned", s.collapse.not_owned);
   out.AddHistogram("netlet_size",

@@ -45,7 +45,6 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   std::vector<double> noise_factor;
   if (options.combine == "average") {
     ViewNoiseOptions noise_options;
-    noise_options.gate_gsd = options.combine_gate_gsd;
     noise_factor = EstimateViewNoiseFactors(views, combine_views, noise_options);
     stats.noise_factor = noise_factor;
     timer.Mark("noise");
@@ -60,9 +59,14 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   timer.Mark("netlets");
   const std::vector<uint32_t> chosen = LabelNetlets(views, nodes, netlets, options, &stats.labeling);
   timer.Mark("labelling");
+  std::vector<std::vector<uint32_t>> judges(views.size());
+  for (uint32_t v = 0; v < views.size(); ++v) judges[v] = combine_views[v].empty() ? neighbors[v] : combine_views[v];
+  const PointVerdicts verdicts = JudgePoints(views, neighbors, judges, noise_factor, options);
+  timer.Mark("point tests");
   stats.emitted_per_view.assign(views.size(), 0);
   for (uint32_t v = 0; v < views.size(); ++v) {
-    const CollapseStats s = EmitView(v, views, nodes, chosen, neighbors, combine_views, noise_factor, options, owner, sink);
+    const CollapseStats s = EmitView(v, views, nodes, chosen, neighbors, combine_views, noise_factor, verdicts, options,
+                                        owner, sink);
     stats.emitted_per_view[v] = s.emitted;
     stats.collapse += s;
     if (progress) progress("collapse", v + 1, views.size());

@@ -23,6 +23,10 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("fusion.displacement_weight", o.displacement_weight, 0.0);
   c.AtLeast("fusion.smoothness_weight", o.smoothness_weight, 0.0);
   c.InRange("fusion.smoothness_rounds", o.smoothness_rounds, 0, 20);
+  c.OneOf("fusion.collapse", o.collapse, {"netlet", "best_view"});
+  c.AtLeast("fusion.redundancy_tolerance_sigmas", o.redundancy_tolerance_sigmas, 0.0);
+  c.InRange("fusion.free_space_min_views", o.free_space_min_views, 0, 64);
+  c.AtLeast("fusion.free_space_sigmas", o.free_space_sigmas, 0.0);
   c.InRange("fusion.min_consistent_views", o.min_consistent_views, 1, 64);
   c.AtLeast("fusion.correspondence_tolerance_sigmas", o.correspondence_tolerance_sigmas, 0.0);
   c.AtLeast("fusion.outlier_expected_factor", o.outlier_expected_factor, 0.0);

@@ -48,6 +48,17 @@ struct SacOptions {
   // Coverage (collapse, step 6): with estimated noise (combine: average), the chosen view "emits the surface" also
   // when the depths differ by less than this many sigmas of their difference (0 = the tolerance above only).
   double coverage_tolerance_sigmas = 5.0;
+  // Collapse (core/collapse.h, core/redundancy.h):
+  //   netlet:    a pixel is dropped when the view its Netlet chose emits that surface (the coverage rule).
+  //   best_view: also when a more precise view (lower estimated depth noise there) holds and emits the same surface,
+  //              so each surface patch comes from one depth map.
+  std::string collapse = "best_view";
+  double redundancy_tolerance_sigmas = 3.0;  // best_view: "same surface" also within this many sigmas of the
+                                             // estimated noise of the two depths' difference (0 = strict tolerance)
+  // Free space (core/point_verdicts.h): a point is dropped when at least free_space_min_views (0 = off) of the combine
+  // views see through it by more than the tolerance and free_space_sigmas sigma of the estimated noise.
+  int free_space_min_views = 2;
+  double free_space_sigmas = 3.0;
   int min_consistent_views = 4;         // a point must agree with this many views (its own included), fewer
                                         // where fewer can observe it (see collapse.h)
   double outlier_expected_factor = 1.5; // with estimated noise: at most 1 + this x the expected agreeing views
@@ -56,7 +67,7 @@ struct SacOptions {
   //   average: it keeps the selected view's pixel (same point count) with its depth along that ray averaged
   //            over the agreeing depth maps (core/depth_combine.h).
   std::string combine = "average";
-  double combine_gate_gsd = 12.0;       // average: depth maps within this many local GSDs along the ray take part,
+  double combine_gate_gsd = 4.0;        // average: depth maps within this many local GSDs along the ray take part,
   double combine_gate_sigmas = 3.0;     // or within this many sigmas of the estimated noise of the own depth
   int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees

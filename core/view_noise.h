@@ -22,7 +22,9 @@ namespace sacfuse {
 struct ViewNoiseOptions {
   int sample_step_px = 8;     // sample grid spacing, depth-map pixels
   int min_samples = 50;       // residuals a view pair needs to count
-  double gate_gsd = 12.0;     // as fusion.combine_gate_gsd
+  double gate_gsd = 12.0;     // residuals within this many local GSDs count. Not fusion.combine_gate_gsd (4): a gate
+                              // that narrow truncates the residuals and halved the estimated noise on blocks with
+                              // large errors (aerial-bench Montpellier at error scale 2.5: k 0.0061 against 0.0130)
   double min_slope = 0.2;     // as DepthCombineOptions::min_slope
 };
 

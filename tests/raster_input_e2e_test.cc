@@ -124,7 +124,7 @@ class RasterInputEndToEndTest : public testing::TinyBlockSuite {
       const CloudDiff d = CompareClouds(ref / "fused.laz", got / "fused.laz", tol_quanta);
       std::cout << "[ raster e2e ] " << got << " vs " << ref << ": " << d.count_b << " / " << d.count_a << " points, "
                 << d.moved << " moved, max " << d.max_diff_quanta << " quanta\n";
-      EXPECT_GT(d.count_a, 100000u);
+      EXPECT_GT(d.count_a, 50000u);  // a real cloud (SAC emits ~95,000 points of the half-size tiny block)
       EXPECT_EQ(d.count_b, d.count_a) << got;
       EXPECT_EQ(d.mismatched, 0u) << got << ": " << d.moved << " points moved, max " << d.max_diff_quanta
                                   << " LAS quanta";

@@ -1,0 +1,159 @@
+// Point tests before the collapse (core/point_verdicts.h) and the best-view redundancy (core/redundancy.h) on
+// nadir views over a plane whose answers are known by construction (core/sac_test_scene.h).
+#include "core/point_verdicts.h"
+
+#include <gtest/gtest.h>
+
+#include "core/redundancy.h"
+#include "core/sac_fusion.h"
+#include "core/sac_nodes.h"
+#include "core/sac_test_scene.h"
+
+namespace sacfuse {
+namespace {
+
+using testing::CollectingSink;
+using testing::kEast;
+using testing::kNorth;
+using testing::NadirView;
+using testing::PlaneDepth;
+using testing::SyntheticBlock;
+
+// Three nadir views 4 m apart over a plane (exact depths); view 0 has a floating blob 20 m above the plane in a
+// 10 x 10 pixel square of its image.
+SyntheticBlock BlockWithFloater() {
+  SyntheticBlock block;
+  for (uint32_t i = 0; i < 3; ++i) {
+    const View view = NadirView(i, kEast + 4.0 * i, kNorth, 500.0);
+    DepthMap depth = PlaneDepth(view);
+    if (i == 0) {
+      for (int r = 40; r < 50; ++r) {
+        for (int c = 55; c < 65; ++c) depth.at(r, c) -= 20.0f;
+      }
+    }
+    block.Add(view, depth);
+  }
+  return block;
+}
+
+std::vector<std::vector<uint32_t>> AllOthers(size_t n) {
+  std::vector<std::vector<uint32_t>> out(n);
+  for (uint32_t v = 0; v < n; ++v) {
+    for (uint32_t b = 0; b < n; ++b) {
+      if (b != v) out[v].push_back(b);
+    }
+  }
+  return out;
+}
+
+TEST(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses) {
+  const SyntheticBlock block = BlockWithFloater();
+  const auto views = block.SacViews();
+  const auto others = AllOthers(views.size());
+  SacOptions options;
+  options.min_consistent_views = 1;  // isolate the free-space test
+  options.free_space_min_views = 2;
+  const PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
+  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 60), PointVerdict::kFreeSpace);  // both others see the ground behind
+  EXPECT_EQ(verdicts.At(0, block.depths[0], 10, 10), PointVerdict::kPasses);
+  EXPECT_EQ(verdicts.At(1, block.depths[1], 45, 60), PointVerdict::kPasses);
+  // Asking for three views that see through it: only two can, so it passes that test.
+  options.free_space_min_views = 3;
+  EXPECT_EQ(JudgePoints(views, others, others, {}, options).At(0, block.depths[0], 45, 60), PointVerdict::kPasses);
+  // Off: nothing is free space.
+  options.free_space_min_views = 0;
+  EXPECT_EQ(JudgePoints(views, others, others, {}, options).At(0, block.depths[0], 45, 60), PointVerdict::kPasses);
+}
+
+TEST(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
+  const SyntheticBlock block = BlockWithFloater();
+  const auto views = block.SacViews();
+  const auto others = AllOthers(views.size());
+  SacOptions options;
+  options.min_consistent_views = 2;
+  options.free_space_min_views = 0;
+  const PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
+  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 60), PointVerdict::kOutlier);  // nobody agrees with the floater
+  // Seen by no other view: an outlier as soon as two views are asked for.
+  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 5), PointVerdict::kOutlier);
+  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 100), PointVerdict::kPasses);  // seen and agreed by views 1, 2
+  // Invalid depth pixels get no verdict.
+  SyntheticBlock holes = BlockWithFloater();
+  holes.depths[2].at(5, 5) = 0.0f;
+  const auto hole_views = holes.SacViews();
+  EXPECT_EQ(JudgePoints(hole_views, others, others, {}, options).At(2, holes.depths[2], 5, 5), PointVerdict::kInvalid);
+}
+
+// Best-view collapse alone: no outlier or free-space test.
+SacOptions BestViewOnly() {
+  SacOptions options;
+  options.min_consistent_views = 1;
+  options.free_space_min_views = 0;
+  options.collapse = "best_view";
+  return options;
+}
+
+// Netlet labels in which every node keeps its own view.
+std::vector<uint32_t> OwnLabels(const NodeTable& nodes) {
+  std::vector<uint32_t> labels(nodes.nodes.size());
+  for (size_t i = 0; i < nodes.nodes.size(); ++i) labels[i] = nodes.nodes[i].view;
+  return labels;
+}
+
+// Two views of one plane, view 0 from half the height (4x more precise: sigma ~ z^2 / f). Best view: every pixel of
+// view 1 over view 0's footprint is redundant; the rest of view 1 is kept; view 0 keeps all its pixels.
+TEST(RedundancyTest, BestViewEmitsAloneWhereItSeesAndTheOtherViewFillsTheRest) {
+  SyntheticBlock block;
+  block.Add(NadirView(0, kEast, kNorth, 250.0), PlaneDepth(NadirView(0, kEast, kNorth, 250.0)));
+  block.Add(NadirView(1, kEast + 8.0, kNorth, 500.0), PlaneDepth(NadirView(1, kEast + 8.0, kNorth, 500.0)));
+  const auto views = block.SacViews();
+  const auto others = AllOthers(views.size());
+  const SacOptions options = BestViewOnly();
+  const PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
+  const NodeTable nodes = BuildNodes(views);
+  const std::vector<uint32_t> own_labels = OwnLabels(nodes);
+  // View 1's pixel under view 0's footprint centre, and one far outside it.
+  const Eigen::Vector3d inside = views[1].world_from_cam * views[1].depth_camera.Unproject(60.5 - 48.0, 45.5, 500.0);
+  EXPECT_TRUE(BetterViewEmits(views, 1, inside, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
+  const Eigen::Vector3d outside = views[1].world_from_cam * views[1].depth_camera.Unproject(110.5, 45.5, 500.0);
+  EXPECT_FALSE(BetterViewEmits(views, 1, outside, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
+  // View 0 has no better view.
+  const Eigen::Vector3d centre0 = views[0].world_from_cam * views[0].depth_camera.Unproject(60.5, 45.5, 250.0);
+  EXPECT_FALSE(BetterViewEmits(views, 0, centre0, 250.0, others[0], {}, nodes, own_labels, verdicts, options));
+
+  // End to end: view 0 emits all its pixels, view 1 only what view 0 does not see, and the ground is covered.
+  CollectingSink sink;
+  const SacStats stats = RunSacFusion(views, options, sink);
+  EXPECT_EQ(stats.emitted_per_view[0], block.depths[0].num_pixels());
+  EXPECT_GT(stats.collapse.redundant, 0u);
+  // View 0 covers east +-1.25 m .. view 1 covers +8 +-10 m: view 1 keeps about (18.75 - 1.25) / 20 of its columns.
+  const double kept_fraction = static_cast<double>(stats.emitted_per_view[1]) / block.depths[1].num_pixels();
+  EXPECT_NEAR(kept_fraction, 17.5 / 20.0, 0.06);
+}
+
+// A better view whose pixel is an outlier does not take the surface away from the other view: no hole.
+TEST(RedundancyTest, BetterViewWhosePixelIsDroppedDoesNotMakeAHole) {
+  SyntheticBlock block;
+  const View fine = NadirView(0, kEast, kNorth, 250.0);
+  const View coarse = NadirView(1, kEast, kNorth, 500.0);
+  block.Add(fine, PlaneDepth(fine));
+  block.Add(coarse, PlaneDepth(coarse));
+  const auto views = block.SacViews();
+  const auto others = AllOthers(views.size());
+  const SacOptions options = BestViewOnly();
+  const NodeTable nodes = BuildNodes(views);
+  const std::vector<uint32_t> own_labels = OwnLabels(nodes);
+  PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
+  const Eigen::Vector3d centre = views[1].world_from_cam * views[1].depth_camera.Unproject(60.5, 45.5, 500.0);
+  EXPECT_TRUE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
+  // Mark every pixel of the fine view as an outlier: the coarse view keeps its pixel.
+  for (auto& verdict : verdicts.per_view[0]) verdict = PointVerdict::kOutlier;
+  EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
+  // And a fine pixel whose Netlet chose the coarse view does not count either (it is collapsed by the Netlet rule).
+  verdicts = JudgePoints(views, others, others, {}, options);
+  std::vector<uint32_t> all_coarse(nodes.nodes.size(), 1);
+  EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, all_coarse, verdicts, options));
+}
+
+}  // namespace
+}  // namespace sacfuse

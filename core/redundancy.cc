@@ -1,0 +1,36 @@
+#include "core/redundancy.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/sac_tolerance.h"
+
+namespace sacfuse {
+
+bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point_in_world,
+                     double depth_m, const std::vector<uint32_t>& judges, const std::vector<double>& noise_factor,
+                     const NodeTable& nodes, const std::vector<uint32_t>& chosen_view, const PointVerdicts& verdicts,
+                     const SacOptions& options) {
+  auto sigma_m = [&](uint32_t i, double z_m) {
+    return (noise_factor.empty() ? 1.0 : noise_factor[i]) * DepthNoiseScale(views[i], z_m);
+  };
+  const double own_sigma = sigma_m(v, depth_m);
+  for (const uint32_t b : judges) {
+    if (b == v) continue;
+    const DepthLookup hit = LookupDepth(views[b], point_in_world);
+    if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
+    const double sigma_b = sigma_m(b, hit.z_m);
+    if (sigma_b > own_sigma || (sigma_b == own_sigma && b > v)) continue;
+    const double pair_sigma = noise_factor.empty() ? 0.0 : std::hypot(own_sigma, sigma_b);
+    const double tolerance = std::max(DepthToleranceM(views[b], hit.z_m, options),
+                                      options.redundancy_tolerance_sigmas * pair_sigma);
+    if (std::abs(hit.stored_depth_m - hit.z_m) > tolerance) continue;
+    const SacView& bv = views[b];
+    if (chosen_view[nodes.Id(b, static_cast<uint32_t>(bv.superpixels->label(hit.row, hit.col)))] != b) continue;
+    if (verdicts.At(b, *bv.depth, hit.row, hit.col) != PointVerdict::kPasses) continue;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace sacfuse
