@@ -19,7 +19,7 @@ namespace lf = las_format;
 
 namespace {
 
-constexpr size_t kBufferRecords = 65536;  // records buffered before one fwrite (LAZ: one chunk)
+constexpr size_t kBufferRecords = 65536;  // records buffered before one fwrite (LAZ: LazChunkWriter's batch)
 constexpr double kAutoOffsetGrid = 1000.0;  // metres; the automatic offset is a multiple of this
 constexpr double kMaxScale = 1000.0;        // so that the automatic offset is a multiple of the scale
 
@@ -203,7 +203,7 @@ void LasWriter::Impl::ValidateOptions() {
                      options.vlrs.end());
   if (options.compressed) {
     laz = std::make_unique<LazChunkWriter>(pdrf, record_length);
-    buffer_records = LazChunkWriter::kChunkPoints;
+    buffer_records = LazChunkWriter::kBatchChunks * LazChunkWriter::kChunkPoints;
     options.vlrs.push_back(laz->Vlr());
   }
   for (const LasVlr& vlr : options.vlrs) {
@@ -283,8 +283,9 @@ void LasWriter::Impl::WriteBytes(const uint8_t* data, size_t size) {
 void LasWriter::Impl::FlushBuffer() {
   if (laz) {
     if (buffered > 0) {
-      const std::vector<uint8_t>& chunk = laz->Chunk(buffer.data(), buffered);
-      WriteBytes(chunk.data(), chunk.size());
+      for (const std::vector<uint8_t>& chunk : laz->Chunks(buffer.data(), buffered)) {
+        WriteBytes(chunk.data(), chunk.size());
+      }
     }
   } else {
     WriteBytes(buffer.data(), buffered * record_length);

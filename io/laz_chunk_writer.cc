@@ -1,6 +1,9 @@
 #include "io/laz_chunk_writer.h"
 
+#include <algorithm>
 #include <limits>
+
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "io/las_format.h"
@@ -17,7 +20,8 @@ LazChunkWriter::LazChunkWriter(int pdrf, size_t record_length) {
   const std::string unsupported = vlr.Unsupported(pdrf, record_length);
   if (!unsupported.empty()) throw Error("LAZ cannot be written for point format " + std::to_string(pdrf) + ": " + unsupported);
   vlr_payload_ = vlr.Serialize();
-  encoder_ = std::make_unique<laz::ChunkEncoder>(vlr, record_length);
+  record_length_ = record_length;
+  for (size_t i = 0; i < kBatchChunks; ++i) encoders_.push_back(std::make_unique<laz::ChunkEncoder>(vlr, record_length));
 }
 
 LazChunkWriter::~LazChunkWriter() = default;
@@ -31,13 +35,22 @@ LasVlr LazChunkWriter::Vlr() const {
   return vlr;
 }
 
-const std::vector<uint8_t>& LazChunkWriter::Chunk(const uint8_t* records, size_t count) {
-  chunk_.clear();
-  encoder_->Encode(records, count, &chunk_);
-  if (chunk_.size() > std::numeric_limits<uint32_t>::max()) throw Error("LAZ chunk larger than 4 GiB");
-  entries_.push_back({static_cast<uint32_t>(count), static_cast<uint32_t>(chunk_.size())});
-  total_bytes_ += chunk_.size();
-  return chunk_;
+const std::vector<std::vector<uint8_t>>& LazChunkWriter::Chunks(const uint8_t* records, size_t count) {
+  if (count == 0 || count > kBatchChunks * kChunkPoints) throw Error("LAZ: invalid batch of " + std::to_string(count) + " records");
+  const size_t num_chunks = (count + kChunkPoints - 1) / kChunkPoints;
+  chunks_.resize(num_chunks);
+  tbb::parallel_for(size_t{0}, num_chunks, [&](size_t i) {
+    const size_t first = i * kChunkPoints;
+    chunks_[i].clear();
+    encoders_[i]->Encode(records + first * record_length_, std::min(kChunkPoints, count - first), &chunks_[i]);
+  });
+  for (size_t i = 0; i < num_chunks; ++i) {
+    if (chunks_[i].size() > std::numeric_limits<uint32_t>::max()) throw Error("LAZ chunk larger than 4 GiB");
+    const size_t points = std::min(kChunkPoints, count - i * kChunkPoints);
+    entries_.push_back({static_cast<uint32_t>(points), static_cast<uint32_t>(chunks_[i].size())});
+    total_bytes_ += chunks_[i].size();
+  }
+  return chunks_;
 }
 
 std::vector<uint8_t> LazChunkWriter::Table() const { return laz::EncodeChunkTable(entries_, false); }

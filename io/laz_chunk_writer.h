@@ -24,8 +24,12 @@ class LazChunkWriter {
   LazChunkWriter(int pdrf, size_t record_length);
   ~LazChunkWriter();
   LasVlr Vlr() const;
-  // Compresses `count` (1..kChunkPoints) records into one chunk; the bytes stay valid until the next call.
-  const std::vector<uint8_t>& Chunk(const uint8_t* records, size_t count);
+  // Chunks compressed at once, in parallel (each with its own encoder): LasWriter buffers this many chunks of
+  // records before it writes. Chunks are independent in LAZ, so the file is the same for any thread count.
+  static constexpr size_t kBatchChunks = 8;
+  // Compresses `count` (1..kBatchChunks x kChunkPoints) records into consecutive chunks of kChunkPoints records
+  // (the last may be shorter); the chunks' bytes, in order, stay valid until the next call.
+  const std::vector<std::vector<uint8_t>>& Chunks(const uint8_t* records, size_t count);
   // Bytes of all chunks made so far.
   uint64_t chunk_bytes() const { return total_bytes_; }
   // The chunk table of the chunks made so far.
@@ -33,8 +37,9 @@ class LazChunkWriter {
 
  private:
   std::vector<uint8_t> vlr_payload_;
-  std::unique_ptr<laz::ChunkEncoder> encoder_;
-  std::vector<uint8_t> chunk_;
+  std::vector<std::unique_ptr<laz::ChunkEncoder>> encoders_;  // one per chunk of a batch
+  std::vector<std::vector<uint8_t>> chunks_;
+  size_t record_length_ = 0;
   std::vector<laz::ChunkEntry> entries_;
   uint64_t total_bytes_ = 0;
 };
