@@ -35,7 +35,7 @@ namespace {
 // surface there.
 bool SurfaceOffset(const SacView& b, const Eigen::Vector3d& point_in_world, double max_spread_m, double* offset_m,
                    double* z_m) {
-  const Eigen::Vector3d p = b.view.cam_from_world * point_in_world;
+  const Eigen::Vector3d p = b.PointInCamera(point_in_world);
   if (p.z() <= 0) return false;
   const Eigen::Vector2d uv = b.depth_camera.Project(p);
   double stored = 0.0;

@@ -36,7 +36,7 @@ bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, const Eige
     ++observers;
     if (noise_aware) {
       const double sigma_b = DepthSigmaM(views, noise_factor, b, hit.z_m);
-      expected_agree += std::erf(tolerance / (std::hypot(sigma_own, sigma_b) * std::sqrt(2.0)));
+      expected_agree += std::erf(tolerance / (PairSigmaM(sigma_own, sigma_b) * std::sqrt(2.0)));
     }
   }
   int required = std::min(options.min_consistent_views, std::max(2, 1 + observers));
@@ -59,7 +59,7 @@ int SeeThroughViews(const std::vector<SacView>& views, uint32_t v, const Eigen::
     const DepthLookup hit = LookupDepth(views[b], point);
     if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
     const double sigma_pair =
-        noise_factor.empty() ? 0.0 : std::hypot(sigma_own, DepthSigmaM(views, noise_factor, b, hit.z_m));
+        noise_factor.empty() ? 0.0 : PairSigmaM(sigma_own, DepthSigmaM(views, noise_factor, b, hit.z_m));
     const double margin = std::max(DepthToleranceM(views[b], hit.z_m, options), options.free_space_sigmas * sigma_pair);
     if (hit.stored_depth_m - hit.z_m > margin) ++count;
   }

@@ -21,7 +21,7 @@ bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen:
     if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
     const double sigma_b = sigma_m(b, hit.z_m);
     if (sigma_b > own_sigma || (sigma_b == own_sigma && b > v)) continue;
-    const double pair_sigma = noise_factor.empty() ? 0.0 : std::hypot(own_sigma, sigma_b);
+    const double pair_sigma = noise_factor.empty() ? 0.0 : PairSigmaM(own_sigma, sigma_b);
     const double tolerance = std::max(DepthToleranceM(views[b], hit.z_m, options),
                                       options.redundancy_tolerance_sigmas * pair_sigma);
     if (std::abs(hit.stored_depth_m - hit.z_m) > tolerance) continue;

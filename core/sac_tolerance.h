@@ -21,9 +21,15 @@ inline double DepthSigmaM(const std::vector<SacView>& views, const std::vector<d
   return noise_factor[i] * DepthNoiseScale(views[i], z_m);
 }
 
+// Sigma of the difference of two independent depths (std::hypot's overflow guard is not needed for metres and cost
+// 9 % of SAC's time).
+inline double PairSigmaM(double sigma_a_m, double sigma_b_m) {
+  return std::sqrt(sigma_a_m * sigma_a_m + sigma_b_m * sigma_b_m);
+}
+
 // Whether two depths differing by `difference_m` agree within `sigmas` sigma of their difference.
 inline bool AgreeWithinSigmas(double difference_m, double sigma_a_m, double sigma_b_m, double sigmas) {
-  return std::abs(difference_m) <= sigmas * std::hypot(sigma_a_m, sigma_b_m);
+  return std::abs(difference_m) <= sigmas * PairSigmaM(sigma_a_m, sigma_b_m);
 }
 
 inline double DepthToleranceM(const SacView& view, double depth_m, const SacOptions& options) {

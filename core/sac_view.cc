@@ -14,12 +14,14 @@ SacView MakeSacView(const View& view, const DepthMap* depth, const SuperpixelMap
   v.consistency = consistency;
   v.depth_camera = view.camera.Scaled(depth->width, depth->height);
   v.world_from_cam = view.cam_from_world.Inverse();
+  v.cam_from_world_rotation = view.cam_from_world.rotation.toRotationMatrix();
+  v.cam_from_world_translation = view.cam_from_world.translation;
   return v;
 }
 
 DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_world) {
   DepthLookup out;
-  const Eigen::Vector3d p = view.view.cam_from_world * point_in_world;
+  const Eigen::Vector3d p = view.PointInCamera(point_in_world);
   if (p.z() <= 0) return out;
   const Eigen::Vector2d uv = view.depth_camera.Project(p);
   if (!(uv.x() >= 0 && uv.y() >= 0 && uv.x() < view.depth->width && uv.y() < view.depth->height)) return out;
