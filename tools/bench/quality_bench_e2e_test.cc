@@ -1,6 +1,6 @@
 // End-to-end: `sacfuse bench --quick` on a simulated tiny block (expected rows, the ceiling above every method,
-// union denser than SAC, resume re-runs nothing), missing LiDAR files skipped with a message, and a failing COLMAP
-// recorded as failed rows while the bench goes on.
+// union denser than SAC, resume re-runs nothing), missing LiDAR files and a missing aerial-bench folder skipped
+// with a message, and a failing COLMAP recorded as failed rows while the bench goes on.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -88,7 +88,8 @@ TEST(QualityBenchEndToEndTest, MissingLidarFilesAreSkippedWithAMessage) {
   testing::TempDir dir;
   const fs::path out = dir / "bench";
   std::string log;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " bench --blocks zurich,semis --no-ablations --colmap off --lidar-dir " +
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " bench --blocks zurich,semis --no-ablations --colmap off --aerial-bench off "
+                                         "--lidar-dir " +
                            ShellQuote(dir / "nolidar") + " --out " + ShellQuote(out),
                        &log),
             0)
@@ -106,6 +107,29 @@ TEST(QualityBenchEndToEndTest, MissingLidarFilesAreSkippedWithAMessage) {
   }
   EXPECT_EQ(skipped, (std::set<std::string>{"zurich", "semis"}));
   EXPECT_NE(testing::ReadFileBytes(out / "bench.md").find("skipped block zurich"), std::string::npos);
+}
+
+TEST(QualityBenchEndToEndTest, MissingAerialBenchIsSkippedWithAMessage) {
+  testing::TempDir dir;
+  const fs::path out = dir / "bench";
+  std::string log;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " bench --blocks zurich --no-ablations --colmap off --lidar-dir " +
+                           ShellQuote(dir / "nolidar") + " --aerial-bench " + ShellQuote(dir / "noab") +
+                           " --aerial-blocks montpellier,zurich_e25 --out " + ShellQuote(out),
+                       &log),
+            0)
+      << log;
+  const std::string message = "aerial-bench not found: " + (dir / "noab" / "make_block.py").string() + " is missing";
+  EXPECT_NE(log.find("skipping block aerial montpellier: " + message), std::string::npos) << log;
+  EXPECT_NE(log.find("skipping block aerial zurich_e25: " + message), std::string::npos) << log;
+  const nlohmann::json j = ReadJsonFile(out / "bench.json");
+  EXPECT_TRUE(j["aerial_rows"].empty());
+  std::set<std::string> skipped;
+  for (const auto& b : j["blocks"]) {
+    if (b["status"] == "skipped") skipped.insert(b["scene"].get<std::string>());
+  }
+  EXPECT_EQ(skipped, (std::set<std::string>{"zurich", "aerial montpellier", "aerial zurich_e25"}));
+  EXPECT_NE(testing::ReadFileBytes(out / "bench.md").find("skipped block aerial montpellier"), std::string::npos);
 }
 
 TEST(QualityBenchEndToEndTest, FailingRowsAreRecordedAndTheBenchGoesOn) {
