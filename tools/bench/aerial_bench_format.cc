@@ -61,7 +61,11 @@ json AerialRowsToJson(const std::vector<AerialRow>& rows) {
   json out = json::array();
   for (const AerialRow& r : rows) {
     json row = RowResultToJson(r.result);
-    row.erase("key");
+    // Columns of our own scorer that aerial-bench rows do not have (their scores are in "aerial").
+    for (const char* k : {"key", "accuracy_2gsd_pct", "completeness_2gsd_pct", "mean_abs_distance_m", "points",
+                          "redundancy", "fusion_wall_s", "fusion_peak_rss_mib", "tool_version"}) {
+      row.erase(k);
+    }
     row["block"] = r.block;
     row["method"] = r.method;
     row["aerial"] = AerialScoreToJson(r.score);

@@ -110,6 +110,8 @@ TEST(AerialBenchTableTest, JsonRowsCarryTheScoresAndTheRatio) {
   EXPECT_DOUBLE_EQ(j[0]["aerial"]["f1_2gsd"].get<double>(), 0.97);
   EXPECT_DOUBLE_EQ(j[0]["ratio_to_tsdf_points"].get<double>(), 0.5);
   EXPECT_FALSE(j[0].contains("key"));
+  EXPECT_FALSE(j[0].contains("points")) << "no column of our own scorer";
+  EXPECT_DOUBLE_EQ(j[0]["wall_s"].get<double>(), 12.34);
   const nlohmann::json s = AerialSummariesToJson(SummariseAerial(rows));
   EXPECT_EQ(s[0]["half_way"], true);
   EXPECT_EQ(s[0]["sac_rank_5gsd"], 3);
