@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "tools/bench/aerial_bench_rows.h"
 #include "tools/bench/child_process.h"
 #include "tools/bench/quality_bench_format.h"
 #include "tools/bench/quality_bench_machine.h"
@@ -18,12 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string Join(const std::vector<std::string>& argv) {
-  std::string out;
-  for (const auto& a : argv) out += (out.empty() ? "" : " ") + a;
-  return out;
-}
-
 bool BlockComplete(const fs::path& dir) {
   std::error_code ec;
   return fs::is_regular_file(dir / "metadata.json", ec) && fs::is_regular_file(dir / "sacfuse.yaml", ec);
@@ -32,7 +27,7 @@ bool BlockComplete(const fs::path& dir) {
 // Simulates the block unless a complete one is there; returns "" or the error text.
 std::string EnsureBlock(const BlockSpec& block, const fs::path& dir, const std::string& sacfuse, std::ostream& out) {
   const std::vector<std::string> args = block.SimulateArgs(dir.string());
-  const std::string stamp = "sacfuse " + Join(args) + "\n";
+  const std::string stamp = "sacfuse " + JoinWords(args) + "\n";
   if (BlockComplete(dir)) {
     if (!fs::exists(dir / "bench_block.json")) WriteFileAtomically((dir / "bench_block.json").string(), stamp);
     return "";
@@ -48,7 +43,7 @@ std::string EnsureBlock(const BlockSpec& block, const fs::path& dir, const std::
     const ChildResult r = RunChildProcess(argv, log.string());
     if (r.exit_code != 0 || !BlockComplete(dir)) {
       out << " failed\n";
-      return "`sacfuse " + Join(args) + "` failed (exit code " + std::to_string(r.exit_code) + "); last lines of " +
+      return "`sacfuse " + JoinWords(args) + "` failed (exit code " + std::to_string(r.exit_code) + "); last lines of " +
              log.string() + ":\n" + TailOfFile(log.string(), 8);
     }
     WriteFileAtomically((dir / "bench_block.json").string(), stamp);
@@ -81,20 +76,42 @@ void PrintProgress(size_t index, size_t total, const RowSpec& row, const RowResu
       << (r.reused ? " (reused)" : "") << std::endl;
 }
 
+void RunAerialBlocks(const AerialPlan& plan, const QualityBenchOptions& options, const BenchEnvironment& env,
+                     const fs::path& root, BenchDocument* doc, BenchOutcome* outcome, std::ostream& out) {
+  AerialContext context;
+  context.sacfuse = env.sacfuse;
+  context.python = plan.python;
+  context.bench_dir = plan.bench_dir;
+  context.root = root.string();
+  context.colmap = !options.colmap_path.empty();
+  context.force = options.force;
+  context.keep_clouds = options.keep_clouds;
+  for (const AerialBlockSpec& block : plan.blocks) {
+    for (AerialRow& row : RunAerialBlock(block, context, out)) {
+      ++outcome->rows;
+      if (!row.result.ok()) ++outcome->failed_rows;
+      if (row.result.reused) ++outcome->reused_rows;
+      doc->aerial_rows.push_back(std::move(row));
+    }
+  }
+}
+
 }  // namespace
 
 BenchOutcome RunQualityBench(const QualityBenchOptions& options, const BenchEnvironment& env, std::ostream& out) {
   if (options.out_dir.empty()) throw ConfigError("--out: required (the bench's output folder)");
   const BenchPlan plan = BuildBenchPlan(options);
+  const AerialPlan aerial = BuildAerialPlan(options);
   const fs::path root = fs::absolute(options.out_dir);
   fs::create_directories(root / "blocks");
   fs::create_directories(root / "rows");
-  for (const SkippedBlock& s : plan.skipped) out << "skipping block " << s.scene << ": " << s.reason << std::endl;
 
   BenchDocument doc;
   doc.options = options;
   doc.blocks = plan.blocks;
   doc.skipped = plan.skipped;
+  doc.skipped.insert(doc.skipped.end(), aerial.skipped.begin(), aerial.skipped.end());
+  for (const SkippedBlock& s : doc.skipped) out << "skipping block " << s.scene << ": " << s.reason << std::endl;
   doc.header.command_line = env.command_line;
   doc.header.date = UtcNow();
   doc.header.machine = DescribeMachine(ReadMachineInfo());
@@ -132,6 +149,7 @@ BenchOutcome RunQualityBench(const QualityBenchOptions& options, const BenchEnvi
     if (bench_row.result.reused) ++outcome.reused_rows;
     doc.rows.push_back(std::move(bench_row));
   }
+  RunAerialBlocks(aerial, options, env, root / "aerial", &doc, &outcome, out);
   Summarise(&doc);
   outcome.markdown_path = (root / "bench.md").string();
   outcome.json_path = (root / "bench.json").string();

@@ -1,6 +1,6 @@
 // End-to-end: `sacfuse bench --quick` on a simulated tiny block (expected rows, the ceiling above every method,
-// union denser than SAC, resume re-runs nothing), missing LiDAR files skipped with a message, and a failing COLMAP
-// recorded as failed rows while the bench goes on.
+// union denser than SAC, resume re-runs nothing), missing LiDAR files and a missing aerial-bench folder skipped
+// with a message, and a failing COLMAP recorded as failed rows while the bench goes on.
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +25,24 @@ using testing::ShellQuote;
 
 double Seconds(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// `sacfuse bench` of our zurich block (no ablations, no COLMAP) and the given aerial-bench blocks; its exit code.
+int BenchWithAerial(const fs::path& lidar, const fs::path& aerial_bench, const std::string& aerial_blocks,
+                    const fs::path& out, std::string* log) {
+  return RunCommand(SacfuseBinary() + " bench --blocks zurich --no-ablations --colmap off --lidar-dir " +
+                        ShellQuote(lidar) + " --aerial-bench " + ShellQuote(aerial_bench) + " --aerial-blocks " +
+                        aerial_blocks + " --out " + ShellQuote(out),
+                    log);
+}
+
+// The scenes bench.json lists as skipped.
+std::set<std::string> SkippedScenes(const nlohmann::json& bench) {
+  std::set<std::string> skipped;
+  for (const auto& b : bench["blocks"]) {
+    if (b["status"] == "skipped") skipped.insert(b["scene"].get<std::string>());
+  }
+  return skipped;
 }
 
 TEST(QualityBenchEndToEndTest, QuickBenchHasTheRowsAndResumes) {
@@ -88,7 +106,8 @@ TEST(QualityBenchEndToEndTest, MissingLidarFilesAreSkippedWithAMessage) {
   testing::TempDir dir;
   const fs::path out = dir / "bench";
   std::string log;
-  ASSERT_EQ(RunCommand(SacfuseBinary() + " bench --blocks zurich,semis --no-ablations --colmap off --lidar-dir " +
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " bench --blocks zurich,semis --no-ablations --colmap off --aerial-bench off "
+                                         "--lidar-dir " +
                            ShellQuote(dir / "nolidar") + " --out " + ShellQuote(out),
                        &log),
             0)
@@ -100,12 +119,46 @@ TEST(QualityBenchEndToEndTest, MissingLidarFilesAreSkippedWithAMessage) {
   EXPECT_NE(log.find("skipping block semis"), std::string::npos) << log;
   const nlohmann::json j = ReadJsonFile(out / "bench.json");
   EXPECT_TRUE(j["rows"].empty());
-  std::set<std::string> skipped;
-  for (const auto& b : j["blocks"]) {
-    if (b["status"] == "skipped") skipped.insert(b["scene"].get<std::string>());
-  }
-  EXPECT_EQ(skipped, (std::set<std::string>{"zurich", "semis"}));
+  EXPECT_EQ(SkippedScenes(j), (std::set<std::string>{"zurich", "semis"}));
   EXPECT_NE(testing::ReadFileBytes(out / "bench.md").find("skipped block zurich"), std::string::npos);
+}
+
+TEST(QualityBenchEndToEndTest, MissingAerialBenchIsSkippedWithAMessage) {
+  testing::TempDir dir;
+  const fs::path out = dir / "bench";
+  std::string log;
+  ASSERT_EQ(BenchWithAerial(dir / "nolidar", dir / "noab", "montpellier,zurich_e25", out, &log), 0) << log;
+  const std::string message = "aerial-bench not found: " + (dir / "noab" / "make_block.py").string() + " is missing";
+  EXPECT_NE(log.find("skipping block aerial montpellier: " + message), std::string::npos) << log;
+  EXPECT_NE(log.find("skipping block aerial zurich_e25: " + message), std::string::npos) << log;
+  const nlohmann::json j = ReadJsonFile(out / "bench.json");
+  EXPECT_TRUE(j["aerial_rows"].empty());
+  EXPECT_EQ(SkippedScenes(j), (std::set<std::string>{"zurich", "aerial montpellier", "aerial zurich_e25"}));
+  EXPECT_NE(testing::ReadFileBytes(out / "bench.md").find("skipped block aerial montpellier"), std::string::npos);
+}
+
+// A make_block.py that fails: the block's rows are recorded as failed with its log, the next block still runs.
+TEST(QualityBenchEndToEndTest, FailingAerialBlockIsRecordedAndTheBenchGoesOn) {
+  testing::TempDir dir;
+  fs::create_directories(dir / "ab");
+  std::ofstream(dir / "ab" / "make_block.py") << "import sys\nprint('fake make_block failure', file=sys.stderr)\n"
+                                                 "sys.exit(3)\n";
+  fs::create_directories(dir / "lidar" / "lastools");
+  std::ofstream(dir / "lidar" / "lastools" / "zurich.las") << "x";
+  const fs::path out = dir / "bench";
+  std::string log;
+  EXPECT_EQ(BenchWithAerial(dir / "lidar", dir / "ab", "zurich,zurich_e25", out, &log), 1) << log;
+  EXPECT_NE(log.find("making aerial-bench block zurich_e25"), std::string::npos) << "the bench went on: " << log;
+  const nlohmann::json j = ReadJsonFile(out / "bench.json");
+  ASSERT_EQ(j["aerial_rows"].size(), 8u) << j.dump(1);  // sacfuse, tsdf, union, oracle on each block
+  for (const auto& r : j["aerial_rows"]) {
+    EXPECT_EQ(r["status"], "failed");
+    EXPECT_NE(r["error"].get<std::string>().find("fake make_block failure"), std::string::npos) << r;
+  }
+  int failed_main = 0;  // the fake zurich.las fails our own zurich block too
+  for (const auto& r : j["rows"]) failed_main += r["status"] == "failed" ? 1 : 0;
+  EXPECT_EQ(j["failed_rows"], 8 + failed_main);
+  EXPECT_NE(testing::ReadFileBytes(out / "bench.md").find("- aerial-bench / zurich / sacfuse: "), std::string::npos);
 }
 
 TEST(QualityBenchEndToEndTest, FailingRowsAreRecordedAndTheBenchGoesOn) {

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "tools/bench/aerial_bench_format.h"
 #include "tools/bench/quality_bench_result.h"
 
 namespace sacfuse::bench {
@@ -120,6 +121,7 @@ std::string FormatCount(uint64_t value) {
 void Summarise(BenchDocument* d) {
   d->summaries = SummariseGroups(d->rows);
   d->averages = AverageOverBlocks(d->rows, d->summaries);
+  d->aerial_summaries = SummariseAerial(d->aerial_rows);
 }
 
 std::string FormatBenchMarkdown(const BenchDocument& d) {
@@ -180,16 +182,21 @@ std::string FormatBenchMarkdown(const BenchDocument& d) {
     }
   }
 
-  bool any_failed = false;
+  md << FormatAerialMarkdown(d.aerial_rows, d.aerial_summaries);
+
+  std::vector<std::pair<std::string, std::string>> failed;  // where, error
   for (const BenchRow& r : d.rows) {
-    if (r.result.ok()) continue;
-    if (!any_failed) md << "\n## Failed rows\n\n";
-    any_failed = true;
-    std::string error = r.result.error;
+    if (!r.result.ok()) failed.emplace_back(r.spec.section + " / " + r.spec.block_id + " / " + r.spec.name, r.result.error);
+  }
+  for (const AerialRow& r : d.aerial_rows) {
+    if (!r.result.ok()) failed.emplace_back("aerial-bench / " + r.block + " / " + r.method, r.result.error);
+  }
+  if (!failed.empty()) md << "\n## Failed rows\n\n";
+  for (auto& [where, error] : failed) {
     for (char& c : error) {
       if (c == '\n') c = ' ';
     }
-    md << "- " << r.spec.section << " / " << r.spec.block_id << " / " << r.spec.name << ": " << error << "\n";
+    md << "- " << where << ": " << error << "\n";
   }
   AppendNotes(d, md);
   return md.str();
@@ -211,7 +218,9 @@ json BenchToJson(const BenchDocument& d) {
                   {"ablations", d.options.ablations},
                   {"ablation_preset", d.options.ablation_preset},
                   {"lidar_dir", d.options.lidar_dir},
-                  {"colmap", d.options.colmap_path}};
+                  {"colmap", d.options.colmap_path},
+                  {"aerial_bench_dir", d.options.aerial_bench_dir},
+                  {"aerial_blocks", d.options.aerial_blocks}};
   json blocks = json::array();
   for (const BlockSpec& b : d.blocks) {
     blocks.push_back({{"id", b.id}, {"scene", b.scene}, {"status", "used"}, {"preset", b.preset},
@@ -243,7 +252,10 @@ json BenchToJson(const BenchDocument& d) {
     rows.push_back(row);
   }
   j["rows"] = rows;
+  for (const AerialRow& r : d.aerial_rows) failed += r.result.ok() ? 0 : 1;
   j["failed_rows"] = failed;
+  j["aerial_rows"] = AerialRowsToJson(d.aerial_rows);
+  j["aerial_summaries"] = AerialSummariesToJson(d.aerial_summaries);
   auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
   json summaries = json::array();
   for (const GroupSummary& g : d.summaries) {

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tools/bench/aerial_bench_table.h"
 #include "tools/bench/quality_bench_plan.h"
 #include "tools/bench/quality_bench_table.h"
 
@@ -30,9 +31,11 @@ struct BenchDocument {
   std::vector<BenchRow> rows;                // plan order
   std::vector<GroupSummary> summaries;       // SummariseGroups(rows)
   std::vector<ScaleAverage> averages;        // AverageOverBlocks(rows, summaries)
+  std::vector<AerialRow> aerial_rows;        // aerial-bench blocks (aerial_bench_rows.h), block by block
+  std::vector<AerialSummary> aerial_summaries;  // SummariseAerial(aerial_rows)
 };
 
-// Fills summaries and averages from rows.
+// Fills summaries, averages and aerial_summaries from the rows.
 void Summarise(BenchDocument* document);
 
 std::string FormatBenchMarkdown(const BenchDocument& document);

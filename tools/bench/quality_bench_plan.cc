@@ -213,22 +213,23 @@ void ApplyQuickPreset(QualityBenchOptions* o) {
   o->ablation_preset = "tiny";
   o->max_ablation_rows = 2;
   o->colmap_path.clear();
+  o->aerial_blocks.clear();
 }
 
-std::string DefaultLidarDir() {
+std::string DefaultSharedFolder(const std::string& relative) {
   std::vector<fs::path> candidates;
   if (const char* env = std::getenv("SACFUSE_SHARED"); env != nullptr && *env != '\0') {
-    candidates.push_back(fs::path(env) / "research-data" / "lidar");
+    candidates.push_back(fs::path(env) / relative);
   }
-  if (*SACFUSE_SOURCE_DIR != '\0') {
-    candidates.push_back(fs::path(SACFUSE_SOURCE_DIR) / ".." / "shared" / "research-data" / "lidar");
-  }
+  if (*SACFUSE_SOURCE_DIR != '\0') candidates.push_back(fs::path(SACFUSE_SOURCE_DIR) / ".." / "shared" / relative);
   for (const fs::path& p : candidates) {
     std::error_code ec;
     if (fs::is_directory(p, ec)) return fs::weakly_canonical(p, ec).string();
   }
   return "";
 }
+
+std::string DefaultLidarDir() { return DefaultSharedFolder("research-data/lidar"); }
 
 const std::vector<LidarCity>& LidarCatalogue() {
   // Areas: the whole Zurich file (100 m) and Montpellier tile (50 m); 100 m centred crops of the two large,

@@ -24,14 +24,20 @@ struct QualityBenchOptions {
   std::string lidar_dir;                    // folder holding lastools/, pdal_autzen/, ...; "" = none found
   bool force = false;                       // re-run rows whose result exists
   bool keep_clouds = false;                 // keep every row's fused LAS (default: deleted once scored)
+  // aerial-bench (aerial_bench_plan.h): its blocks, run beside ours; empty = off (--aerial-bench off, --quick).
+  std::vector<std::string> aerial_blocks = {"montpellier", "montpellier_e25", "zurich", "zurich_e25"};
+  std::string aerial_bench_dir;             // the aerial-bench folder; "" = not found (its blocks are skipped)
+  std::string python = "/usr/bin/python3";  // runs its scripts (Debian's numpy, scipy, opencv, open3d)
 };
 
 // The --quick preset (tests, CI): tiny preset, city only, scale 1, methods sac, union, tsdf, two ablation rows,
-// no COLMAP. out_dir and lidar_dir are left as they are.
+// no COLMAP, no aerial-bench. out_dir and lidar_dir are left as they are.
 void ApplyQuickPreset(QualityBenchOptions* options);
 
-// $SACFUSE_SHARED/research-data/lidar when SACFUSE_SHARED is set, else <repo>/../shared/research-data/lidar for
-// the source tree this was built from; "" when that folder does not exist.
+// $SACFUSE_SHARED/<relative> when SACFUSE_SHARED is set and it exists, else <repo>/../shared/<relative> for the
+// source tree this was built from; "" when neither folder exists.
+std::string DefaultSharedFolder(const std::string& relative);
+// DefaultSharedFolder("research-data/lidar").
 std::string DefaultLidarDir();
 
 // One entry of the block catalogue: a LiDAR city and the crop that makes a block of about the small preset's size.

@@ -4,6 +4,7 @@
 #include <deque>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include "core/error.h"
@@ -17,36 +18,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-std::string Join(const std::vector<std::string>& argv) {
-  std::string out;
-  for (const auto& a : argv) out += (out.empty() ? "" : " ") + a;
-  return out;
-}
-
 std::string FormatNumber(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
-}
-
-json ReadJson(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path.string(), "cannot open");
-  try {
-    return json::parse(in);
-  } catch (const json::exception& e) {
-    throw InputError(path.string(), std::string("not valid JSON: ") + e.what());
-  }
-}
-
-// Runs a child; throws Error with the log's tail when it fails.
-ChildResult RunStep(const std::vector<std::string>& argv, const fs::path& log) {
-  const ChildResult r = RunChildProcess(argv, log.string());
-  if (r.exit_code != 0) {
-    throw Error("`" + Join(argv) + "` failed with exit code " + std::to_string(r.exit_code) + "; last lines of " +
-                log.string() + ":\n" + TailOfFile(log.string(), 8));
-  }
-  return r;
 }
 
 // The block's simulate stamp (its arguments), so a re-simulated block invalidates the rows on it.
@@ -66,7 +41,7 @@ void ScoreSacfuseRow(const RowSpec& row, const RowContext& c, const BlockEvaluat
   for (const double t : ev.tau_gsd) taus += (taus.empty() ? "" : ",") + FormatNumber(t);
   argv.insert(argv.end(), {"--gsd", FormatNumber(ev.gsd_m), "--tau-gsd", taus, "--json", (dir / "eval.json").string()});
   if (ev.align) argv.push_back("--align");
-  const ChildResult e = RunStep(argv, dir / "eval.log");
+  const ChildResult e = RunRowStep(argv, (dir / "eval.log").string());
   result->eval_s = e.wall_s;
   const RowMetrics wall = result->metrics;
   result->metrics = MetricsFromEvalJson((dir / "eval.json").string(), ev.gsd_m);
@@ -76,12 +51,12 @@ void ScoreSacfuseRow(const RowSpec& row, const RowContext& c, const BlockEvaluat
 
 void RunSacfuseRow(const RowSpec& row, const RowContext& c, const BlockEvaluation& ev, RowResult* result) {
   const fs::path dir(c.row_dir);
-  const ChildResult r = RunStep({c.sacfuse, "run", (dir / "sacfuse.yaml").string()}, dir / "run.log");
+  const ChildResult r = RunRowStep({c.sacfuse, "run", (dir / "sacfuse.yaml").string()}, (dir / "run.log").string());
   result->metrics.wall_s = r.wall_s;
   result->metrics.peak_rss_mib = r.peak_rss_mib;
   const fs::path report = dir / "out" / "run_report.json";
   if (fs::exists(report)) {
-    const json j = ReadJson(report);
+    const json j = ReadJsonFile(report.string());
     if (j.contains("wall_seconds") && j["wall_seconds"].is_number()) result->fusion_wall_s = j["wall_seconds"];
     if (j.contains("peak_rss_mib") && j["peak_rss_mib"].is_number()) result->fusion_peak_rss_mib = j["peak_rss_mib"];
   }
@@ -93,8 +68,8 @@ void RunColmapRow(const RowSpec& row, const RowContext& c, const BlockEvaluation
   std::vector<std::string> argv = {c.sacfuse, "colmap-fusion", (dir / "sacfuse.yaml").string(), "--out",
                                    (dir / "out").string(), "--colmap", c.colmap};
   for (const std::string& option : row.stereo_fusion) argv.insert(argv.end(), {"--stereo-fusion", option});
-  const ChildResult whole = RunStep(argv, dir / "run.log");
-  const json j = ReadJson(dir / "out" / "colmap_fusion.json");
+  const ChildResult whole = RunRowStep(argv, (dir / "run.log").string());
+  const json j = ReadJsonFile((dir / "out" / "colmap_fusion.json").string());
   fs::copy_file(dir / "out" / "eval.json", dir / "eval.json", fs::copy_options::overwrite_existing);
   result->metrics = MetricsFromEvalJson((dir / "eval.json").string(), ev.gsd_m);
   result->metrics.wall_s = j.value("wall_s", kNoValue);
@@ -104,9 +79,52 @@ void RunColmapRow(const RowSpec& row, const RowContext& c, const BlockEvaluation
   result->tool_version = j.value("colmap_version", std::string());
 }
 
+}  // namespace
+
+ChildResult RunRowStep(const std::vector<std::string>& argv, const std::string& log) {
+  const ChildResult r = RunChildProcess(argv, log);
+  if (r.exit_code != 0) {
+    throw Error("`" + JoinWords(argv) + "` failed with exit code " + std::to_string(r.exit_code) + "; last lines of " +
+                log + ":\n" + TailOfFile(log, 8));
+  }
+  return r;
+}
+
+json ReadJsonFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path, "cannot open");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(path, std::string("not valid JSON: ") + e.what());
+  }
+}
+
+std::optional<json> ReusableRowJson(const std::string& path, const std::string& key, bool force) {
+  if (force || !fs::exists(path)) return std::nullopt;
+  json old = ReadJsonFile(path);
+  const RowResult r = RowResultFromJson(old);
+  if (!r.ok() || r.key != key) return std::nullopt;
+  return old;
+}
+
+void RecordRowJson(const std::string& path, const json& row, RowResult* result) {
+  try {
+    std::error_code ec;
+    fs::create_directories(fs::path(path).parent_path(), ec);
+    WriteFileAtomically(path, row.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    if (result->ok()) {
+      result->status = "failed";
+      result->error = std::string("cannot record the row: ") + e.what();
+    }
+  }
+}
+
 // What a scored row keeps: the configs, logs, eval.json, run_report.json; the clouds and working copies go.
-void DropClouds(const fs::path& dir) {
+void DropClouds(const std::string& row_dir) {
   std::error_code ec;
+  const fs::path dir(row_dir);
   const fs::path out = dir / "out";
   if (fs::exists(out / "run_report.json", ec)) fs::copy_file(out / "run_report.json", dir / "run_report.json",
                                                               fs::copy_options::overwrite_existing, ec);
@@ -116,7 +134,11 @@ void DropClouds(const fs::path& dir) {
   fs::remove_all(out, ec);
 }
 
-}  // namespace
+std::string JoinWords(const std::vector<std::string>& words) {
+  std::string out;
+  for (const auto& a : words) out += (out.empty() ? "" : " ") + a;
+  return out;
+}
 
 std::string TailOfFile(const std::string& path, int lines) {
   std::ifstream in(path);
@@ -147,12 +169,10 @@ RowResult RunBenchRow(const RowSpec& row, const RowContext& c) {
     for (const auto& o : row.stereo_fusion) command += " --stereo-fusion " + o;
     result.key = config + "\n# command: " + command + "\n# block: " + BlockStamp(c.block_dir);
 
-    if (!c.force && fs::exists(row_json)) {
-      RowResult old = RowResultFromJson(ReadJson(row_json));
-      if (old.ok() && old.key == result.key) {
-        old.reused = true;
-        return old;
-      }
+    if (const auto old = ReusableRowJson(row_json.string(), result.key, c.force)) {
+      RowResult reused = RowResultFromJson(*old);
+      reused.reused = true;
+      return reused;
     }
     std::error_code ec;
     fs::remove_all(dir, ec);  // cold start: no cached superpixels, no stale outputs
@@ -170,17 +190,8 @@ RowResult RunBenchRow(const RowSpec& row, const RowContext& c) {
     result.status = "failed";
     result.error = e.what();
   }
-  if (!c.keep_clouds) DropClouds(dir);
-  try {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    WriteFileAtomically(row_json.string(), RowResultToJson(result).dump(2) + "\n");
-  } catch (const std::exception& e) {
-    if (result.ok()) {
-      result.status = "failed";
-      result.error = std::string("cannot record the row: ") + e.what();
-    }
-  }
+  if (!c.keep_clouds) DropClouds(dir.string());
+  RecordRowJson(row_json.string(), RowResultToJson(result), &result);
   return result;
 }
 

@@ -8,9 +8,13 @@
 //    time and memory are COLMAP's stereo_fusion process (colmap_fusion.json), its scores out/eval.json.
 // The result is written atomically to ROW/row.json with a key (config text, command, block); a later bench with
 // the same key reuses it (resume) unless forced. The row's clouds are deleted once scored unless kept.
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
+#include "tools/bench/child_process.h"
 #include "tools/bench/quality_bench_plan.h"
 #include "tools/bench/quality_bench_result.h"
 
@@ -27,6 +31,23 @@ struct RowContext {
 
 // Never throws for a failing row: the error text is in the result (status "failed").
 RowResult RunBenchRow(const RowSpec& row, const RowContext& context);
+
+// The steps every bench row is made of (also the aerial-bench rows, aerial_bench_rows.h):
+// Runs a child (child_process.h) with its output in `log`; throws Error naming the command, its exit code and the
+// log's tail when it fails.
+ChildResult RunRowStep(const std::vector<std::string>& argv, const std::string& log);
+// Parses a JSON file; throws InputError naming it.
+nlohmann::json ReadJsonFile(const std::string& path);
+// The row.json at `path` when it succeeded with this key and `force` is off (resume), else nothing.
+std::optional<nlohmann::json> ReusableRowJson(const std::string& path, const std::string& key, bool force);
+// Writes `row` (RowResultToJson(*result) plus any extra fields) atomically to `path`; a row that cannot be recorded
+// becomes failed.
+void RecordRowJson(const std::string& path, const nlohmann::json& row, RowResult* result);
+// Removes ROW/out (the clouds) after keeping its run_report.json and colmap_fusion.json in ROW.
+void DropClouds(const std::string& row_dir);
+
+// argv joined by spaces (commands in errors, logs and resume keys).
+std::string JoinWords(const std::vector<std::string>& words);
 
 // The last `lines` lines of a text file ("" when it cannot be read): error context from a child's log.
 std::string TailOfFile(const std::string& path, int lines);

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "jobs/version.h"
+#include "tools/bench/aerial_bench_plan.h"
 #include "tools/bench/child_process.h"
 #include "tools/bench/quality_bench.h"
 #include "tools/cli/cli_support.h"
@@ -24,6 +25,7 @@ struct BenchArgs {
   bench::QualityBenchOptions options;
   std::string colmap = "auto";
   std::string lidar_dir;  // "" = DefaultLidarDir()
+  std::string aerial_bench = "auto";  // auto | off | DIR
   bool quick = false;
   bool no_ablations = false;
   // Which options the command line set (they win over --quick).
@@ -33,7 +35,18 @@ struct BenchArgs {
   CLI::Option* methods = nullptr;
   CLI::Option* ablation_preset = nullptr;
   CLI::Option* colmap_option = nullptr;
+  CLI::Option* aerial_option = nullptr;
+  CLI::Option* aerial_blocks = nullptr;
 };
+
+// --aerial-bench: "off" clears the blocks; "auto" is DefaultAerialBenchDir() ("" when missing: skipped).
+void ResolveAerialBench(const std::string& aerial_bench, bench::QualityBenchOptions* o) {
+  if (aerial_bench == "off") {
+    o->aerial_blocks.clear();
+    return;
+  }
+  o->aerial_bench_dir = aerial_bench == "auto" ? bench::DefaultAerialBenchDir() : aerial_bench;
+}
 
 std::string ResolveColmap(const std::string& colmap, std::string* note) {
   if (colmap == "off") {
@@ -80,9 +93,11 @@ int BenchCommand(BenchArgs& args) {
       if (args.methods->count() > 0) o.methods = given.methods;
       if (args.ablation_preset->count() > 0) o.ablation_preset = given.ablation_preset;
       if (args.colmap_option->count() == 0) args.colmap = "off";
+      if (args.aerial_option->count() > 0 || args.aerial_blocks->count() > 0) o.aerial_blocks = given.aerial_blocks;
     }
     if (args.no_ablations) o.ablations = false;
     o.lidar_dir = args.lidar_dir.empty() ? bench::DefaultLidarDir() : args.lidar_dir;
+    ResolveAerialBench(args.aerial_bench, &o);
     bench::BenchEnvironment env;
     env.command_line = OwnCommandLine();
     env.sacfuse_version = VersionString();
@@ -133,11 +148,23 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--lidar-dir", args->lidar_dir,
                   "Folder of the LiDAR files (default: $SACFUSE_SHARED/research-data/lidar, else "
                   "../shared/research-data/lidar next to the source tree)");
+  args->aerial_option =
+      cmd->add_option("--aerial-bench", args->aerial_bench,
+                      "aerial-bench blocks beside ours: auto ($SACFUSE_SHARED/aerial-bench, else "
+                      "../shared/aerial-bench next to the source tree; skipped with a message when missing) | off | "
+                      "DIR")
+          ->capture_default_str();
+  std::string aerial_names;
+  for (const auto& n : bench::AerialBlockNames()) aerial_names += (aerial_names.empty() ? "" : ",") + n;
+  args->aerial_blocks = cmd->add_option("--aerial-blocks", o.aerial_blocks,
+                                        "aerial-bench blocks, comma-separated (default: " + aerial_names +
+                                            "; made once in OUT/aerial/<name> by its make_block.py)")
+                            ->delimiter(',');
   cmd->add_flag("--force", o.force, "Re-run rows whose result exists");
   cmd->add_flag("--keep-clouds", o.keep_clouds, "Keep every row's fused LAS (default: deleted once scored)");
   cmd->add_flag("--quick", args->quick,
                 "Tests/CI preset: tiny preset, city only, scale 1, methods sac,union,tsdf, 2 ablation rows, no "
-                "COLMAP (options given explicitly still apply)");
+                "COLMAP, no aerial-bench (options given explicitly still apply)");
   cmd->callback([args, exit_code] { *exit_code = BenchCommand(*args); });
 }
 

@@ -1,0 +1,90 @@
+#include "tools/bench/aerial_bench_format.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "tools/bench/quality_bench_format.h"
+
+namespace sacfuse::bench {
+namespace {
+
+using nlohmann::json;
+
+json Number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+
+std::string RowLine(const AerialRow& r, const std::vector<AerialRow>& rows) {
+  std::string name = r.is_sac() ? "**sacfuse**" : AerialMethodLabel(r.method);
+  if (r.result.reused) name += " ↺";
+  std::string line = "| " + r.block + " | " + name + " | ";
+  if (!r.result.ok()) return line + "failed | | | | | | |\n";
+  const AerialScore& s = r.score;
+  return line + FormatFixed(s.f1_2gsd, 4) + " | " + FormatFixed(s.f1_5gsd, 4) + " | " +
+         FormatFixed(s.density_per_m2, 1) + " | " + FormatFixed(RatioToTsdf(r, rows), 2) + " | " +
+         FormatFixed(100.0 * s.above_top, 2) + " | " + FormatFixed(r.result.metrics.wall_s, 1) + " | " +
+         FormatFixed(r.result.metrics.peak_rss_mib, 0) + " |\n";
+}
+
+std::string SummaryLine(const AerialSummary& s) {
+  std::string out = "- " + s.block + ": ";
+  if (s.sac_rank_2gsd == 0) return out + "no successful sacfuse row.\n";
+  out += "SAC rank " + std::to_string(s.sac_rank_2gsd) + " of " + std::to_string(s.ranked) + " at 2×GSD, " +
+         std::to_string(s.sac_rank_5gsd) + " of " + std::to_string(s.ranked) + " at 5×GSD; half-way to the oracle " +
+         "at 2×GSD: " + (s.half_way ? "reached" : "not reached");
+  if (std::isfinite(s.gap_closed)) {
+    out += " (gap closed " + FormatFixed(100.0 * s.gap_closed, 1) + " %: best peer " +
+           AerialMethodLabel(s.best_peer) + " " + FormatFixed(s.best_peer_f1_2gsd, 4) + ", oracle " +
+           FormatFixed(s.oracle_f1_2gsd, 4) + ", SAC " + FormatFixed(s.sac_f1_2gsd, 4) + ")";
+  }
+  return out + ".\n";
+}
+
+}  // namespace
+
+std::string FormatAerialMarkdown(const std::vector<AerialRow>& rows, const std::vector<AerialSummary>& summaries) {
+  if (rows.empty()) return "";
+  std::ostringstream md;
+  md << "\n## aerial-bench (independent simulator, peers and scorer: ../shared/aerial-bench)\n\n"
+     << "| block | method | F1 2×GSD | F1 5×GSD | points in mask /m² | × TSDF's points | above top % | wall s | "
+        "peak RSS MiB |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const AerialRow& r : rows) md << RowLine(r, rows);
+  md << "\n";
+  for (const AerialSummary& s : summaries) md << SummaryLine(s);
+  md << "\nF1: score.py protocol v2 (fractions). × TSDF's points: points in the mask / Open3D TSDF's. Above top: "
+        "share of the points in the mask in free space above the top surface (`diagnostics_v2.above_top`). Rank: "
+        "among the successful rows but the oracle. Half-way: (F1_SAC − F1_best peer) / (F1_oracle − F1_best peer) "
+        "≥ 0.5 at 2×GSD. Wall s and peak RSS: `sacfuse run` as a child process (wait4); peers: peers.py's "
+        "measurement.\n";
+  return md.str();
+}
+
+json AerialRowsToJson(const std::vector<AerialRow>& rows) {
+  json out = json::array();
+  for (const AerialRow& r : rows) {
+    json row = RowResultToJson(r.result);
+    // Columns of our own scorer that aerial-bench rows do not have (their scores are in "aerial").
+    for (const char* k : {"key", "accuracy_2gsd_pct", "completeness_2gsd_pct", "mean_abs_distance_m", "points",
+                          "redundancy", "fusion_wall_s", "fusion_peak_rss_mib", "tool_version"}) {
+      row.erase(k);
+    }
+    row["block"] = r.block;
+    row["method"] = r.method;
+    row["aerial"] = AerialScoreToJson(r.score);
+    row["ratio_to_tsdf_points"] = Number(RatioToTsdf(r, rows));
+    out.push_back(row);
+  }
+  return out;
+}
+
+json AerialSummariesToJson(const std::vector<AerialSummary>& summaries) {
+  json out = json::array();
+  for (const AerialSummary& s : summaries) {
+    out.push_back({{"block", s.block}, {"ranked", s.ranked}, {"sac_rank_2gsd", s.sac_rank_2gsd},
+                   {"sac_rank_5gsd", s.sac_rank_5gsd}, {"sac_f1_2gsd", Number(s.sac_f1_2gsd)},
+                   {"best_peer", s.best_peer}, {"best_peer_f1_2gsd", Number(s.best_peer_f1_2gsd)},
+                   {"oracle_f1_2gsd", Number(s.oracle_f1_2gsd)}, {"gap_closed", Number(s.gap_closed)},
+                   {"half_way", s.half_way}});
+  }
+  return out;
+}
+
+}  // namespace sacfuse::bench
