@@ -62,6 +62,8 @@ OPTIONAL_PKGS=(
   jq                       # reading run_report.json / eval.json in compare_colmap.sh
   clang                    # tools/fuzz.sh: the libFuzzer targets of tests/fuzz are built with clang
   libclang-rt-14-dev       # tools/fuzz.sh: libFuzzer, ASan and UBSan runtimes of clang 14 (Debian 12)
+  python3-numpy python3-scipy python3-opencv python3-open3d  # sacfuse bench --aerial-bench: ../shared/aerial-bench's
+                           # make_block.py, peers.py and score.py (run with /usr/bin/python3)
 )
 if [ "$MODE" = all ] && [ "${SACFUSE_SKIP_OPTIONAL:-0}" != "1" ]; then
   not_installed=()

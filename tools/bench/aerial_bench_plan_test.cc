@@ -1,4 +1,4 @@
-// Which aerial-bench blocks `sacfuse bench` makes: the four definitions of tools/bench/aerial_bench.sh, LiDAR
+// Which aerial-bench blocks `sacfuse bench` makes: the four definitions of the README, LiDAR
 // files expanded, and blocks skipped with a reason when the aerial-bench folder or a LiDAR file is missing.
 #include <fstream>
 

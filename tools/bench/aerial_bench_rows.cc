@@ -17,7 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// COLMAP's grid in peers.py's colmap_best (its best setting on these blocks, as tools/bench/aerial_bench.sh).
+// COLMAP's grid in peers.py's colmap_best (its best setting on these blocks).
 const std::vector<std::string> kColmapGrid = {"--grid", "max_normal_error=180", "--grid", "min_num_pixels=2,5",
                                               "--grid", "max_reproj_error=1,2"};
 
