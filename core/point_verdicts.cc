@@ -11,9 +11,9 @@
 namespace sacfuse {
 namespace {
 
-bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point, double d,
-                       const std::vector<uint32_t>& neighbors, const std::vector<double>& noise_factor,
-                       const SacOptions& options) {
+// `hits[k]`: the point looked up in neighbors[k].
+bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, const std::vector<uint32_t>& neighbors,
+                       const DepthLookup* hits, const std::vector<double>& noise_factor, const SacOptions& options) {
   if (options.min_consistent_views <= 1) return true;
   // Views that can observe the point: they agree, or they see through it (free space). Views where it is occluded
   // (their surface lies in front) cannot judge it and are not counted.
@@ -21,8 +21,9 @@ bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, const Eige
   double expected_agree = 0.0;  // with estimated noise: sum of P(|difference| <= tolerance) over the observers
   const bool noise_aware = !noise_factor.empty() && options.outlier_expected_factor > 0;
   const double sigma_own = noise_aware ? DepthSigmaM(views, noise_factor, v, d) : 0.0;
-  for (const uint32_t b : neighbors) {
-    const DepthLookup hit = LookupDepth(views[b], point);
+  for (size_t k = 0; k < neighbors.size(); ++k) {
+    const uint32_t b = neighbors[k];
+    const DepthLookup& hit = hits[k];
     if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
     const double tolerance = DepthToleranceM(views[b], hit.z_m, options);
     bool observes = false;
@@ -48,22 +49,23 @@ bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, const Eige
   return agree >= required;
 }
 
-// Views among `judges` whose depth at X's projection lies beyond X (see the header).
-int SeeThroughViews(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point, double d,
-                    const std::vector<uint32_t>& judges, const std::vector<double>& noise_factor,
-                    const SacOptions& options) {
+// Whether at least options.free_space_min_views of `judges` see through X (see the header). `neighbor_slot[b]`: the
+// index of view b in the neighbour list whose lookups `neighbor_hits` holds, or -1 (those are not looked up again).
+bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point, double d,
+                 const std::vector<uint32_t>& judges, const std::vector<int>& neighbor_slot,
+                 const DepthLookup* neighbor_hits, const std::vector<double>& noise_factor, const SacOptions& options) {
   const double sigma_own = noise_factor.empty() ? 0.0 : DepthSigmaM(views, noise_factor, v, d);
   int count = 0;
   for (const uint32_t b : judges) {
     if (b == v) continue;
-    const DepthLookup hit = LookupDepth(views[b], point);
+    const DepthLookup hit = neighbor_slot[b] >= 0 ? neighbor_hits[neighbor_slot[b]] : LookupDepth(views[b], point);
     if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
     const double sigma_pair =
         noise_factor.empty() ? 0.0 : PairSigmaM(sigma_own, DepthSigmaM(views, noise_factor, b, hit.z_m));
     const double margin = std::max(DepthToleranceM(views[b], hit.z_m, options), options.free_space_sigmas * sigma_pair);
-    if (hit.stored_depth_m - hit.z_m > margin) ++count;
+    if (hit.stored_depth_m - hit.z_m > margin && ++count >= options.free_space_min_views) return true;
   }
-  return count;
+  return false;
 }
 
 }  // namespace
@@ -78,17 +80,22 @@ PointVerdicts JudgePoints(const std::vector<SacView>& views, const std::vector<s
     const DepthMap& depth = *view.depth;
     auto& verdicts = out.per_view[v];
     verdicts.assign(static_cast<size_t>(depth.width) * depth.height, PointVerdict::kInvalid);
+    // Each point is looked up once in each neighbour; the free-space test reuses those lookups.
+    const std::vector<uint32_t>& near = neighbors[v];
+    std::vector<int> neighbor_slot(views.size(), -1);
+    for (size_t k = 0; k < near.size(); ++k) neighbor_slot[near[k]] = static_cast<int>(k);
     tbb::parallel_for(0, depth.height, [&](int row) {
+      std::vector<DepthLookup> hits(near.size());
       for (int col = 0; col < depth.width; ++col) {
         const float d = depth.at(row, col);
         if (!IsValidDepth(d)) continue;
         const Eigen::Vector3d point = PixelPoint(view, row, col, d);
+        for (size_t k = 0; k < near.size(); ++k) hits[k] = LookupDepth(views[near[k]], point);
         PointVerdict verdict = PointVerdict::kPasses;
-        if (!PassesOutlierTest(views, v, point, d, neighbors[v], noise_factor, options)) {
+        if (!PassesOutlierTest(views, v, d, near, hits.data(), noise_factor, options)) {
           verdict = PointVerdict::kOutlier;
         } else if (options.free_space_min_views > 0 &&
-                   SeeThroughViews(views, v, point, d, judges[v], noise_factor, options) >=
-                       options.free_space_min_views) {
+                   InFreeSpace(views, v, point, d, judges[v], neighbor_slot, hits.data(), noise_factor, options)) {
           verdict = PointVerdict::kFreeSpace;
         }
         verdicts[static_cast<size_t>(row) * depth.width + col] = verdict;
