@@ -68,6 +68,16 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         }
         ++stats.input_pixels;
 
+        // The pixel's own verdict first: a dropped point needs no coverage chain.
+        const PointVerdict verdict = verdicts.At(v, depth, row, col);
+        if (verdict == PointVerdict::kOutlier) {
+          ++stats.outliers;
+          continue;
+        }
+        if (verdict == PointVerdict::kFreeSpace) {
+          ++stats.free_space;
+          continue;
+        }
         const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
         if (label != v) {
           // Follow the choices: the chosen view's cluster there may itself have chosen another view.
@@ -92,15 +102,6 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
             continue;
           }
           ++stats.kept_uncovered;
-        }
-        const PointVerdict verdict = verdicts.At(v, depth, row, col);
-        if (verdict == PointVerdict::kOutlier) {
-          ++stats.outliers;
-          continue;
-        }
-        if (verdict == PointVerdict::kFreeSpace) {
-          ++stats.free_space;
-          continue;
         }
         if (best_view && BetterViewEmits(views, v, point, d, judges, noise_factor, nodes, chosen_view, verdicts,
                                          options)) {

@@ -7,9 +7,9 @@
 // the tolerance, or — with estimated noise — within coverage_tolerance_sigmas sigma of the two depths' difference), and
 // the cluster there chose L itself — or chose L2, and the same holds in L2 (up to 4 hops, never back to a).
 // Otherwise the pixel is emitted from its own view. So no surface patch observed consistently is lost.
-// The target's pixel must also pass the point tests (core/point_verdicts.h), so no pixel is dropped in favour of an
-// outlier. Then the pixel's own verdict: outliers and points in free space are dropped; with `collapse: best_view`
-// so are pixels a more precise view emits (core/redundancy.h).
+// The pixel's own verdict comes first (core/point_verdicts.h): outliers and points in free space are dropped without
+// following any chain. The target's pixel must also pass those tests, so no pixel is dropped in favour of an
+// outlier. With `collapse: best_view` so are pixels a more precise view emits (core/redundancy.h).
 #include <cstdint>
 #include <functional>
 #include <vector>
