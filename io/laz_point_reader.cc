@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cstring>
 
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 #include "io/las_format.h"
 #include "io/laz_arithmetic.h"
@@ -28,7 +30,7 @@ LazPointReader::LazPointReader(const std::string& path, FILE* file, uint64_t fil
       record_length_(header.point_record_length),
       point_count_(header.point_count),
       point_data_offset_(header.offset_to_point_data) {
-  laz::LazVlr vlr;
+  laz::LazVlr& vlr = vlr_;
   try {
     vlr = laz::LazVlr::Parse(laszip_vlr);
   } catch (const laz::DataError& e) {
@@ -39,7 +41,6 @@ LazPointReader::LazPointReader(const std::string& path, FILE* file, uint64_t fil
     Fail("LAZ point format " + std::to_string(header.point_format) + ": " + unsupported +
          "; decompress it with laszip or pdal first");
   }
-  decoder_ = std::make_unique<laz::ChunkDecoder>(vlr, record_length_);
   ReadChunkTable(vlr.chunk_size);
 }
 
@@ -127,42 +128,76 @@ void LazPointReader::ReadChunkTable(uint32_t chunk_size) {
   }
 }
 
-void LazPointReader::StartChunk(size_t index) {
-  const Chunk& c = chunks_[index];
-  chunk_bytes_.resize(static_cast<size_t>(c.bytes));
-  ReadAt(c.start, chunk_bytes_.data(), chunk_bytes_.size());
-  try {
-    decoder_->Start(chunk_bytes_.data(), chunk_bytes_.size(), c.points);
-  } catch (const laz::DataError& e) {
-    Fail("LAZ chunk " + std::to_string(index) + " of " + std::to_string(chunks_.size()) + ": " + e.what());
+void LazPointReader::DecodeBatch() {
+  if (next_chunk_ >= chunks_.size()) Fail("LAZ: read past the last point");
+  const size_t first = next_chunk_;
+  size_t last = first + 1;  // one past the batch's last chunk
+  uint64_t points = chunks_[first].points;
+  while (last < chunks_.size() && last - first < kBatchChunks && points + chunks_[last].points <= kBatchPoints) {
+    points += chunks_[last].points;
+    ++last;
   }
-  chunk_ = index;
-  left_in_chunk_ = c.points;
+  const size_t n = last - first;
+  // The chunks lie one after the other in the file: one read for the batch, before any thread starts.
+  const uint64_t begin = chunks_[first].start;
+  batch_bytes_.resize(static_cast<size_t>(chunks_[last - 1].start + chunks_[last - 1].bytes - begin));
+  ReadAt(begin, batch_bytes_.data(), batch_bytes_.size());
+  batch_records_.resize(static_cast<size_t>(points) * record_length_);
+  while (decoders_.size() < n) decoders_.push_back(std::make_unique<laz::ChunkDecoder>(vlr_, record_length_));
+  std::vector<uint64_t> decoded(n, 0);  // records of each chunk decoded before an error
+  std::vector<std::string> errors(n);
+  tbb::parallel_for(size_t{0}, n, [&](size_t i) {
+    const Chunk& c = chunks_[first + i];
+    const uint8_t* bytes = batch_bytes_.data() + (c.start - begin);
+    uint8_t* out = batch_records_.data() + (c.first_point - chunks_[first].first_point) * record_length_;
+    const std::string name = "LAZ chunk " + std::to_string(first + i) + " of " + std::to_string(chunks_.size());
+    try {
+      decoders_[i]->Start(bytes, static_cast<size_t>(c.bytes), c.points);
+    } catch (const laz::DataError& e) {
+      errors[i] = name + ": " + e.what();
+      return;
+    }
+    try {
+      for (; decoded[i] < c.points; ++decoded[i]) decoders_[i]->Next(out + decoded[i] * record_length_);
+    } catch (const laz::DataError& e) {
+      errors[i] = name + " (points " + std::to_string(c.first_point) + ".." +
+                  std::to_string(c.first_point + c.points - 1) + "): " + e.what();
+    }
+  });
+  // The records up to the first error, in file order; the error is raised when the reading gets there.
+  batch_pos_ = 0;
+  batch_valid_ = 0;
+  batch_error_.clear();
+  for (size_t i = 0; i < n; ++i) {
+    batch_valid_ += static_cast<size_t>(decoded[i]);
+    if (!errors[i].empty()) {
+      batch_error_ = errors[i];
+      break;
+    }
+  }
+  next_chunk_ = last;
 }
 
 void LazPointReader::Read(uint8_t* records, size_t count) {
-  for (size_t i = 0; i < count; ++i) {
-    if (left_in_chunk_ == 0) {
-      const size_t next = started_ ? chunk_ + 1 : 0;
-      if (next >= chunks_.size()) Fail("LAZ: read past the last point");
-      StartChunk(next);
-      started_ = true;
+  while (count > 0) {
+    if (batch_pos_ == batch_valid_) {
+      if (!batch_error_.empty()) Fail(batch_error_);
+      DecodeBatch();
+      continue;
     }
-    try {
-      decoder_->Next(records + i * record_length_);
-    } catch (const laz::DataError& e) {
-      const Chunk& c = chunks_[chunk_];
-      Fail("LAZ chunk " + std::to_string(chunk_) + " of " + std::to_string(chunks_.size()) + " (points " +
-           std::to_string(c.first_point) + ".." + std::to_string(c.first_point + c.points - 1) + "): " + e.what());
-    }
-    --left_in_chunk_;
+    const size_t k = std::min(count, batch_valid_ - batch_pos_);
+    std::memcpy(records, batch_records_.data() + batch_pos_ * record_length_, k * record_length_);
+    records += k * record_length_;
+    batch_pos_ += k;
+    count -= k;
   }
 }
 
 void LazPointReader::Rewind() {
-  started_ = false;
-  left_in_chunk_ = 0;
-  chunk_ = 0;
+  next_chunk_ = 0;
+  batch_pos_ = 0;
+  batch_valid_ = 0;
+  batch_error_.clear();
 }
 
 }  // namespace sacfuse

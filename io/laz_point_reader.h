@@ -1,7 +1,8 @@
 #pragma once
 // Streaming decoder of the point data of a LAZ file (LASzip compressed data format) for LasReader: reads the
-// chunk table, then one chunk at a time (memory bounded by the largest chunk), yielding uncompressed LAS point
-// records. Supports point formats 0-3 point-wise chunked (items version 2) and 6-8 layered chunked (version 3),
+// chunk table, then batches of up to kBatchChunks consecutive chunks (at most kBatchPoints points, but always one
+// whole chunk), decoded in parallel (chunks are independent in LAZ: one decoder per chunk of the batch), yielding
+// uncompressed LAS point records in file order. Memory is bounded by one batch. Supports point formats 0-3 point-wise chunked (items version 2) and 6-8 layered chunked (version 3),
 // with extra bytes, fixed or variable chunk sizes; anything else is refused with an InputError naming the file and
 // the compressor/item version. Corrupt or truncated data give an InputError naming the file and the chunk.
 // Private to io/.
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "io/las_types.h"
+#include "io/laz_vlr.h"
 
 namespace sacfuse {
 
@@ -27,8 +29,13 @@ class LazPointReader {
   LazPointReader(const std::string& path, FILE* file, uint64_t file_size, const LasHeader& header,
                  const std::vector<uint8_t>& laszip_vlr);
   ~LazPointReader();
-  // Decodes the next `count` records (count * record length bytes) into `records`.
+  // Decodes the next `count` records (count * record length bytes) into `records`. A corrupt chunk throws when the
+  // reading reaches its first undecodable record, as a one-chunk-at-a-time decoder would: the records before it
+  // are delivered first.
   void Read(uint8_t* records, size_t count);
+
+  static constexpr size_t kBatchChunks = 8;         // chunks decoded in parallel
+  static constexpr uint64_t kBatchPoints = 400000;  // points of a batch (8 chunks of the usual 50,000)
   void Rewind();
   // Offset of the chunk table (EVLRs of LAS 1.4 LAZ files follow it).
   uint64_t chunk_table_offset() const { return table_offset_; }
@@ -37,7 +44,8 @@ class LazPointReader {
   [[noreturn]] void Fail(const std::string& message) const;
   void ReadAt(uint64_t position, uint8_t* out, size_t size) const;
   void ReadChunkTable(uint32_t chunk_size);
-  void StartChunk(size_t index);
+  // Reads the chunks from next_chunk_ on into batch_bytes_ and decodes them in parallel into batch_records_.
+  void DecodeBatch();
 
   std::string path_;
   FILE* file_;
@@ -46,7 +54,8 @@ class LazPointReader {
   uint64_t point_count_;
   uint64_t point_data_offset_;
   uint64_t table_offset_ = 0;
-  std::unique_ptr<laz::ChunkDecoder> decoder_;
+  laz::LazVlr vlr_;
+  std::vector<std::unique_ptr<laz::ChunkDecoder>> decoders_;  // one per chunk of a batch, made when first needed
   struct Chunk {
     uint64_t start = 0;  // file offset
     uint64_t bytes = 0;
@@ -54,10 +63,12 @@ class LazPointReader {
     uint64_t points = 0;
   };
   std::vector<Chunk> chunks_;
-  std::vector<uint8_t> chunk_bytes_;
-  size_t chunk_ = 0;             // chunk being decoded
-  uint64_t left_in_chunk_ = 0;  // points of it still to decode
-  bool started_ = false;
+  size_t next_chunk_ = 0;              // first chunk of the next batch
+  std::vector<uint8_t> batch_bytes_;   // the compressed chunks of the batch, as in the file
+  std::vector<uint8_t> batch_records_;  // their decoded records
+  size_t batch_pos_ = 0;               // records of the batch already handed out
+  size_t batch_valid_ = 0;             // records of the batch decoded before its first error (all when none)
+  std::string batch_error_;            // that error's message, empty when the whole batch decoded
 };
 
 }  // namespace sacfuse

@@ -15,6 +15,7 @@
 #include "io/las_format.h"
 #include "io/las_reader.h"
 #include "io/las_writer.h"
+#include "io/laz_chunk_table.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
@@ -208,6 +209,49 @@ TEST(LazWriterTest, ParallelBatchesGiveTheSameFileForAnyThreadCount) {
   const uint64_t table = lf::GetU64(&a[lf::GetU32(&a[lf::kOffPointOffset])]);
   EXPECT_EQ(lf::GetU32(&a[table + 4]), 10u);
   ExpectSamePoints(ReadAllLasPoints((dir / "two.laz").string()), ReadAllLasPoints((dir / "twin.las").string()));
+}
+
+// The reader decodes batches of chunks in parallel (LazPointReader::kBatchChunks) but behaves as a one-chunk-at-a-time
+// decoder: on 1 and 2 threads, a file of 10 chunks (two batches) whose chunk k says it holds a wrong number of
+// points delivers exactly the 50,000 * k points before it, equal to those of the LAS twin, then an InputError naming
+// chunk k; a chunk in the middle of the first batch and the first chunk of the second.
+TEST(LazWriterTest, ParallelDecodingDeliversEveryPointBeforeACorruptChunk) {
+  TempDir dir;
+  const size_t n = 9 * 50000 + 7;
+  const std::vector<LasPoint> pts = MakePoints(6, n, 5);
+  Write(dir / "good.laz", 4, 6, pts, true);
+  Write(dir / "twin.las", 4, 6, pts, false);
+  const std::vector<LasPoint> twin = ReadAllLasPoints((dir / "twin.las").string());
+  const std::vector<uint8_t> good = ReadBytes(dir / "good.laz");
+  const size_t point_offset = lf::GetU32(&good[lf::kOffPointOffset]);
+  const size_t record_length = lf::GetU16(&good[lf::kOffRecordLength]);
+  const uint64_t table = lf::GetU64(&good[point_offset]);
+  const std::vector<laz::ChunkEntry> entries =
+      laz::DecodeChunkTable(&good[table + 8], good.size() - table - 8, 10, false);
+  ASSERT_EQ(entries.size(), 10u);
+  for (size_t bad : {3u, 8u}) {
+    std::vector<uint8_t> b = good;
+    size_t start = point_offset + 8;
+    for (size_t i = 0; i < bad; ++i) start += entries[i].bytes;
+    lf::PutU32(&b[start + record_length], 1);  // a layered chunk's point count follows its raw first record
+    WriteBytes(dir / "bad.laz", b);
+    for (int threads : {1, 2}) {
+      SCOPED_TRACE(::testing::Message() << "chunk " << bad << ", " << threads << " threads");
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      LasReader reader((dir / "bad.laz").string());
+      std::vector<LasPoint> got, block;
+      try {
+        while (reader.Read(&block, 1000) > 0) got.insert(got.end(), block.begin(), block.end());
+        ADD_FAILURE() << "the corrupt chunk was read";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("LAZ chunk " + std::to_string(bad) + " of 10"), std::string::npos)
+            << e.what();
+        EXPECT_NE(std::string(e.what()).find("chunk says it holds 1 points"), std::string::npos) << e.what();
+      }
+      ASSERT_EQ(got.size(), bad * 50000);
+      ExpectSamePoints(got, std::vector<LasPoint>(twin.begin(), twin.begin() + static_cast<std::ptrdiff_t>(got.size())));
+    }
+  }
 }
 
 TEST(LazWriterTest, NoFileWithoutCloseAndReaderRewinds) {
