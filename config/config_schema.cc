@@ -66,60 +66,209 @@ std::string ScalarAs(const YAML::Node& n, T* out, const char* type_name) {
   return "";
 }
 
+std::string ChoiceList(const std::vector<std::string>& choices) {
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  return list;
+}
+
+// "" when `v` is one of `choices`, else the problem as ParseMap prints it after the key.
+std::string NotAChoice(const std::string& v, const std::vector<std::string>& choices) {
+  for (const auto& c : choices) {
+    if (c == v) return "";
+  }
+  return "\"" + v + "\" is not one of {" + ChoiceList(choices) + "}";
+}
+
+// The range rule on one number of `key`, or nothing.
+void CheckNumber(const std::string& key, double v, const OptionRange& range, const std::string& rule_prefix,
+                 std::vector<OptionError>* errors) {
+  if (range.Contains(v)) return;
+  const bool finite = std::isfinite(v) && std::abs(v) <= kMaxConfigMagnitude;
+  errors->push_back({key, OptionValueText(v), rule_prefix + (finite ? range.Rule() : AnyNumber().Rule())});
+}
+
 }  // namespace
 
-void ConfigSchema::AddString(const std::string& key, std::string* field, const std::string& doc,
-                             std::vector<std::string> allowed) {
-  Entry e{key, doc, allowed, nullptr, nullptr};
-  e.set = [field, allowed](const YAML::Node& n) -> std::string {
+std::string FormatOptionError(const OptionError& e) {
+  return e.value.empty() ? e.key + " is empty: " + e.rule : e.key + " = " + e.value + ": " + e.rule;
+}
+
+std::string OptionErrorsMessage(const std::vector<OptionError>& errors, const std::string& source,
+                                const std::map<std::string, int>& key_lines) {
+  std::string msg = source + ": invalid configuration";
+  for (const OptionError& e : errors) {
+    const auto line = key_lines.find(e.key);
+    msg += "\n  " + (line == key_lines.end() ? "" : source + ":" + std::to_string(line->second) + ": ") +
+           FormatOptionError(e);
+  }
+  return msg;
+}
+
+std::string OptionValueText(double value) {
+  std::ostringstream os;
+  os << value;
+  return os.str();
+}
+
+bool OptionRange::Contains(double v) const {
+  if (!std::isfinite(v) || std::abs(v) > kMaxConfigMagnitude) return false;
+  return (min_open ? v > min : v >= min) && (max_open ? v < max : v <= max);
+}
+
+std::string OptionRange::Rule() const {
+  if (is_text) {
+    if (!choices.empty()) return "must be one of {" + ChoiceList(choices) + "}";
+    return required ? "a value is required" : "any text";
+  }
+  const bool no_min = min <= -kMaxConfigMagnitude && !min_open;
+  const bool no_max = max >= kMaxConfigMagnitude && !max_open;
+  if (no_min && no_max) return "must be a finite number in [-1e9, 1e9]";
+  if (no_max) return (min_open ? "must be > " : "must be >= ") + OptionValueText(min);
+  if (no_min) return (max_open ? "must be < " : "must be <= ") + OptionValueText(max);
+  return std::string("must be in ") + (min_open ? "(" : "[") + OptionValueText(min) + ", " + OptionValueText(max) +
+         (max_open ? ")" : "]");
+}
+
+OptionRange AnyNumber() { return OptionRange{}; }
+
+OptionRange Above(double min) {
+  OptionRange r;
+  r.min = min;
+  r.min_open = true;
+  return r;
+}
+
+OptionRange AtLeast(double min) {
+  OptionRange r;
+  r.min = min;
+  return r;
+}
+
+OptionRange Closed(double min, double max) {
+  OptionRange r;
+  r.min = min;
+  r.max = max;
+  return r;
+}
+
+OptionRange OpenClosed(double min, double max) {
+  OptionRange r = Closed(min, max);
+  r.min_open = true;
+  return r;
+}
+
+OptionRange Choices(std::vector<std::string> choices) {
+  OptionRange r = AnyText();
+  r.choices = std::move(choices);
+  return r;
+}
+
+OptionRange AnyText() {
+  OptionRange r;
+  r.is_text = true;
+  return r;
+}
+
+OptionRange RequiredText() {
+  OptionRange r = AnyText();
+  r.required = true;
+  return r;
+}
+
+void ConfigSchema::AddString(const std::string& key, std::string* field, OptionSpec spec, const std::string& doc) {
+  const std::vector<std::string> choices = spec.range.choices;
+  Entry e{key, choices.empty() ? "text" : "choice", doc, spec, nullptr, nullptr, nullptr};
+  e.set = [field, choices](const YAML::Node& n) -> std::string {
     std::string v;
     if (auto err = ScalarAs(n, &v, "a string"); !err.empty()) return err;
-    if (!allowed.empty()) {
-      bool ok = false;
-      std::string list;
-      for (const auto& a : allowed) {
-        ok = ok || a == v;
-        list += (list.empty() ? "" : ", ") + a;
-      }
-      if (!ok) return "\"" + v + "\" is not one of {" + list + "}";
+    if (!choices.empty()) {
+      if (auto err = NotAChoice(v, choices); !err.empty()) return err;
     }
     *field = v;
     return "";
   };
   e.get = [field] { return Quote(*field); };
+  e.check = [key, field, range = spec.range]() -> std::vector<OptionError> {
+    if (!range.choices.empty() && !NotAChoice(*field, range.choices).empty()) {
+      return {{key, Quote(*field), range.Rule()}};
+    }
+    if (range.required && field->empty()) return {{key, "", range.Rule()}};
+    return {};
+  };
   entries_.push_back(std::move(e));
 }
 
-void ConfigSchema::AddDouble(const std::string& key, double* field, const std::string& doc) {
-  Entry e{key, doc, {}, nullptr, nullptr};
-  e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "a number"); };
-  e.get = [field] { return FormatDouble(*field); };
+void ConfigSchema::AddChoice(const std::string& key, std::function<size_t()> get_index,
+                             std::function<void(size_t)> set_index, const std::vector<std::string>& choices,
+                             OptionSpec spec, const std::string& doc) {
+  spec.range = Choices(choices);
+  Entry e{key, "choice", doc, spec, nullptr, nullptr, nullptr};
+  e.set = [set_index, choices](const YAML::Node& n) -> std::string {
+    std::string v;
+    if (auto err = ScalarAs(n, &v, "a string"); !err.empty()) return err;
+    if (auto err = NotAChoice(v, choices); !err.empty()) return err;
+    for (size_t i = 0; i < choices.size(); ++i) {
+      if (choices[i] == v) set_index(i);
+    }
+    return "";
+  };
+  e.get = [get_index, choices] {
+    const size_t i = get_index();
+    return Quote(i < choices.size() ? choices[i] : "?");
+  };
+  e.check = [key, get_index, choices, rule = spec.range.Rule()]() -> std::vector<OptionError> {
+    if (get_index() < choices.size()) return {};
+    return {{key, "?", rule}};
+  };
   entries_.push_back(std::move(e));
 }
 
-void ConfigSchema::AddFloat(const std::string& key, float* field, const std::string& doc) {
-  Entry e{key, doc, {}, nullptr, nullptr};
-  e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "a number"); };
-  e.get = [field] { return FormatDouble(*field, 7); };
+template <typename T>
+void ConfigSchema::AddNumber(const std::string& key, T* field, const char* type, int digits, OptionSpec spec,
+                             const std::string& doc) {
+  const bool whole = std::is_integral_v<T>;
+  Entry e{key, whole ? "whole number" : "number", doc, spec, nullptr, nullptr, nullptr};
+  e.set = [field, type](const YAML::Node& n) { return ScalarAs(n, field, type); };
+  e.get = [field, digits] {
+    if constexpr (std::is_integral_v<T>) {
+      return std::to_string(*field);
+    } else {
+      return FormatDouble(*field, digits);
+    }
+  };
+  e.check = [key, field, range = spec.range] {
+    std::vector<OptionError> errors;
+    CheckNumber(key, static_cast<double>(*field), range, "", &errors);
+    return errors;
+  };
   entries_.push_back(std::move(e));
 }
 
-void ConfigSchema::AddInt(const std::string& key, int* field, const std::string& doc) {
-  Entry e{key, doc, {}, nullptr, nullptr};
-  e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "a whole number"); };
-  e.get = [field] { return std::to_string(*field); };
-  entries_.push_back(std::move(e));
+void ConfigSchema::AddDouble(const std::string& key, double* field, OptionSpec spec, const std::string& doc) {
+  AddNumber(key, field, "a number", 15, std::move(spec), doc);
 }
 
-void ConfigSchema::AddBool(const std::string& key, bool* field, const std::string& doc) {
-  Entry e{key, doc, {}, nullptr, nullptr};
+void ConfigSchema::AddFloat(const std::string& key, float* field, OptionSpec spec, const std::string& doc) {
+  AddNumber(key, field, "a number", 7, std::move(spec), doc);
+}
+
+void ConfigSchema::AddInt(const std::string& key, int* field, OptionSpec spec, const std::string& doc) {
+  AddNumber(key, field, "a whole number", 0, std::move(spec), doc);
+}
+
+void ConfigSchema::AddBool(const std::string& key, bool* field, OptionSpec spec, const std::string& doc) {
+  spec.range = Choices({"true", "false"});
+  Entry e{key, "true or false", doc, spec, nullptr, nullptr, nullptr};
   e.set = [field](const YAML::Node& n) { return ScalarAs(n, field, "true or false"); };
   e.get = [field] { return std::string(*field ? "true" : "false"); };
+  e.check = [] { return std::vector<OptionError>{}; };
   entries_.push_back(std::move(e));
 }
 
-void ConfigSchema::AddDoubleList(const std::string& key, std::vector<double>* field, const std::string& doc) {
-  Entry e{key, doc, {}, nullptr, nullptr};
+void ConfigSchema::AddDoubleList(const std::string& key, std::vector<double>* field, OptionSpec spec,
+                                 const std::string& doc) {
+  Entry e{key, "list of numbers", doc, spec, nullptr, nullptr, nullptr};
   e.set = [field](const YAML::Node& n) -> std::string {
     if (!n.IsSequence()) return "expected a list of numbers like [2, 5], got " + NodeKind(n);
     std::vector<double> values;
@@ -135,6 +284,12 @@ void ConfigSchema::AddDoubleList(const std::string& key, std::vector<double>* fi
     std::string s = "[";
     for (size_t i = 0; i < field->size(); ++i) s += (i ? ", " : "") + FormatDouble((*field)[i]);
     return s + "]";
+  };
+  e.check = [key, field, range = spec.range] {
+    std::vector<OptionError> errors;
+    if (range.required && field->empty()) errors.push_back({key, "[]", "must list at least one value"});
+    for (const double v : *field) CheckNumber(key, v, range, "each item ", &errors);
+    return errors;
   };
   entries_.push_back(std::move(e));
 }
@@ -227,6 +382,22 @@ std::string ConfigSchema::Dump(bool with_comments) const {
     os << indent << leaf << ": " << e.get() << "\n";
   }
   return os.str();
+}
+
+std::vector<OptionError> ConfigSchema::Check(uint32_t scopes) const {
+  std::vector<OptionError> errors;
+  for (const auto& e : entries_) {
+    if ((e.spec.scopes & scopes) == 0) continue;
+    for (OptionError& error : e.check()) errors.push_back(std::move(error));
+  }
+  return errors;
+}
+
+std::vector<OptionRow> ConfigSchema::Rows() const {
+  std::vector<OptionRow> rows;
+  rows.reserve(entries_.size());
+  for (const auto& e : entries_) rows.push_back({e.key, e.type, e.get(), e.doc, e.spec});
+  return rows;
 }
 
 std::vector<std::pair<std::string, std::string>> ConfigSchema::Values() const {

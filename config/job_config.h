@@ -1,11 +1,12 @@
 #pragma once
 // The options of one `sacfuse run`, as plain structs with defaults and units. The YAML keys are the struct paths
-// (e.g. `output.scale_m`); config/config_schema.cc binds each key to its field, documentation and rule, so the
-// parser, the validator and `--print-defaults` share one source of truth.
+// (e.g. `output.scale_m`); config/option_table.cc binds each key to its field, unit, range, documentation and
+// result flag, so the parser, the validator, `--print-defaults` and the resume hash share one source of truth.
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "config/fusion_method_kind.h"
 #include "core/consistency_fusion.h"
 #include "core/disparity_normal_fusion.h"
 #include "core/multiray_fusion.h"
@@ -40,6 +41,9 @@ struct FusionOptions {
   // consistency | disparity_normal | tsdf | multiray: the paper's comparison methods [15] [13] [7] [35]
   //   (core/consistency_fusion.h, disparity_normal_fusion.h, tsdf_fusion.h, multiray_fusion.h); they reproject
   //   into the views fusion.max_neighbor_views / max_view_angle_deg / min_footprint_overlap choose.
+  // Parsed once into the enum (config/fusion_method_kind.h). `method` is its name, filled by ParseJobConfig for
+  // the code that still compares strings; code that builds a config sets both (ValidateJobConfig checks them).
+  FusionMethodKind method_kind = FusionMethodKind::kSac;
   std::string method = "sac";
   SacOptions sac;          // YAML: fusion.<field> and superpixels.<field>
   ConsistencyOptions consistency;          // YAML: consistency.<field>

@@ -3,18 +3,11 @@
 #include <map>
 #include <sstream>
 
+#include "config/option_table.h"
 #include "io/file_checksum.h"
 
 namespace sacfuse {
 namespace {
-
-bool AffectsResults(const std::string& key) {
-  auto starts = [&](const char* prefix) { return key.rfind(prefix, 0) == 0; };
-  if (key == "fusion.superpixel_cache_dir" || key == "tiling.claim_timeout_s") return false;
-  return starts("input.") || starts("fusion.") || starts("superpixels.") || starts("tiling.") ||
-         starts("consistency.") || starts("disparity_normal.") || starts("tsdf.") || starts("multiray.") ||
-         key == "output.scale_m" || key == "output.las_version" || key == "crs";
-}
 
 std::map<std::string, std::string> ParseLines(const std::string& text) {
   std::map<std::string, std::string> values;
@@ -32,8 +25,8 @@ std::map<std::string, std::string> ParseLines(const std::string& text) {
 
 std::string ResultSettingsText(const JobConfig& config) {
   std::string text;
-  for (const auto& [key, value] : JobConfigValues(config)) {
-    if (AffectsResults(key)) text += key + ": " + value + "\n";
+  for (const OptionRow& row : JobOptionRows(config)) {
+    if (row.spec.affects_results) text += row.key + ": " + row.value + "\n";
   }
   return text;
 }

@@ -10,7 +10,7 @@ namespace sacfuse {
 
 void ValidateConsistencyOptions(const ConsistencyOptions& o) {
   OptionChecker c;
-  c.Require(o.depth_threshold_rel > 0.0 && o.depth_threshold_rel <= 0.5, "consistency.depth_threshold_rel",
+  c.Require(o.depth_threshold_rel > 0.0 && o.depth_threshold_rel <= 0.5, "ConsistencyOptions.depth_threshold_rel",
             OptionChecker::ToString(o.depth_threshold_rel), "must be in (0, 0.5]");
   c.ThrowIfFailed("consistency options");
 }

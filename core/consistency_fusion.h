@@ -27,7 +27,8 @@ struct ConsistencyOptions {
   double depth_threshold_rel = 0.01;
 };
 
-// Throws ConfigError naming consistency.<key> for every invalid field.
+// Throws ConfigError naming ConsistencyOptions.<field> for every invalid field (an invariant of the run; the YAML
+// keys are checked by config/option_table.cc).
 void ValidateConsistencyOptions(const ConsistencyOptions& options);
 
 // `plan` null = ViewPlanFromDepth(views, NeighborViewOptions{}). Superpixels are not used (may be null).

@@ -108,11 +108,11 @@ TEST(ConsistencyFusionTest, OccludedDepthsAreRemovedAndOnlyRelativeAgreementCoun
   EXPECT_EQ(s2.counter("occluded_hits"), 0u);
 }
 
-TEST(ConsistencyFusionTest, OptionsAreValidatedWithTheirKeys) {
+TEST(ConsistencyFusionTest, OptionsAreValidatedWithTheirFields) {
   ConsistencyOptions o;
   o.depth_threshold_rel = 0.0;
   const std::string what = testing::OptionErrorOf([&] { ValidateConsistencyOptions(o); });
-  EXPECT_NE(what.find("consistency.depth_threshold_rel = 0"), std::string::npos) << what;
+  EXPECT_NE(what.find("ConsistencyOptions.depth_threshold_rel = 0"), std::string::npos) << what;
   Block block;
   const View v = NadirView(0, kEast, kNorth, kHeight);
   block.Add(v, PlaneDepth(v));

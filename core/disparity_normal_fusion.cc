@@ -18,11 +18,12 @@ Eigen::Vector3f NormalAt(const NormalMap& normals, int row, int col) {
 
 void ValidateDisparityNormalOptions(const DisparityNormalOptions& o) {
   OptionChecker c;
-  c.Greater("disparity_normal.disparity_threshold_px", o.disparity_threshold_px, 0.0);
-  c.Require(o.normal_threshold_deg > 0.0 && o.normal_threshold_deg <= 180.0, "disparity_normal.normal_threshold_deg",
-            OptionChecker::ToString(o.normal_threshold_deg), "must be in (0, 180]");
-  c.InRange("disparity_normal.min_consistent_views", o.min_consistent_views, 1, 64);
-  c.InRange("disparity_normal.normal_radius_px", o.normal_radius_px, 1, 10);
+  c.Greater("DisparityNormalOptions.disparity_threshold_px", o.disparity_threshold_px, 0.0);
+  c.Require(o.normal_threshold_deg > 0.0 && o.normal_threshold_deg <= 180.0,
+            "DisparityNormalOptions.normal_threshold_deg", OptionChecker::ToString(o.normal_threshold_deg),
+            "must be in (0, 180]");
+  c.InRange("DisparityNormalOptions.min_consistent_views", o.min_consistent_views, 1, 64);
+  c.InRange("DisparityNormalOptions.normal_radius_px", o.normal_radius_px, 1, 10);
   c.ThrowIfFailed("disparity_normal options");
 }
 

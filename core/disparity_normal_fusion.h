@@ -29,7 +29,8 @@ struct DisparityNormalOptions {
   int normal_radius_px = 2;             // plane-fit window radius for the computed normals, pixels. [1, 10]
 };
 
-// Throws ConfigError naming disparity_normal.<key> for every invalid field.
+// Throws ConfigError naming DisparityNormalOptions.<field> for every invalid field (an invariant of the run; the
+// YAML keys are checked by config/option_table.cc).
 void ValidateDisparityNormalOptions(const DisparityNormalOptions& options);
 
 // `plan` null = ViewPlanFromDepth(views, NeighborViewOptions{}). Superpixels are not used (may be null).

@@ -99,15 +99,16 @@ TEST(DisparityNormalFusionTest, NormalsMustAgreeWhereDisparitiesDo) {
   for (const FusedPoint& p : line.points()) EXPECT_NEAR(p.point_in_world.x(), kEast + 4.0, 1.0);
 }
 
-TEST(DisparityNormalFusionTest, OptionsAreValidatedWithTheirKeys) {
+TEST(DisparityNormalFusionTest, OptionsAreValidatedWithTheirFields) {
   DisparityNormalOptions o;
   o.disparity_threshold_px = -1;
   o.normal_threshold_deg = 200;
   o.min_consistent_views = 0;
   o.normal_radius_px = 0;
   const std::string what = testing::OptionErrorOf([&] { ValidateDisparityNormalOptions(o); });
-  for (const char* key : {"disparity_normal.disparity_threshold_px = -1", "disparity_normal.normal_threshold_deg = 200",
-                          "disparity_normal.min_consistent_views = 0", "disparity_normal.normal_radius_px = 0"}) {
+  for (const char* key :
+       {"DisparityNormalOptions.disparity_threshold_px = -1", "DisparityNormalOptions.normal_threshold_deg = 200",
+        "DisparityNormalOptions.min_consistent_views = 0", "DisparityNormalOptions.normal_radius_px = 0"}) {
     EXPECT_NE(what.find(key), std::string::npos) << what;
   }
 }

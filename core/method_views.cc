@@ -6,7 +6,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/option_check.h"
 
 namespace sacfuse {
 namespace {
@@ -93,14 +92,6 @@ void CheckViewPlan(const ViewPlan& plan, size_t num_views) {
     for (const uint32_t n : plan.neighbors[v]) ok = ok && n < num_views && n != v;
   }
   if (!ok) throw Error("view plan does not fit the " + std::to_string(num_views) + " views given");
-}
-
-void ValidateNeighborViewOptions(const NeighborViewOptions& o) {
-  OptionChecker c;
-  c.InRange("fusion.max_neighbor_views", o.max_views, 1, 64);
-  c.InRange("fusion.max_view_angle_deg", o.max_view_angle_deg, 0.0, 180.0);
-  c.InRange("fusion.min_footprint_overlap", o.min_footprint_overlap, 0.0, 1.0);
-  c.ThrowIfFailed("fusion options");
 }
 
 

@@ -55,9 +55,6 @@ ViewPlan ViewPlanFromDepth(const std::vector<SacView>& views, const NeighborView
 // Throws Error unless `plan` has a neighbour list per view and an order that is a permutation of the views.
 void CheckViewPlan(const ViewPlan& plan, size_t num_views);
 
-// Throws ConfigError naming fusion.<key> for every invalid field.
-void ValidateNeighborViewOptions(const NeighborViewOptions& options);
-
 // World point of depth pixel (col, row) of a view at z-depth depth_m (through the pixel centre).
 inline Eigen::Vector3d PixelPoint(const SacView& view, int row, int col, double depth_m) {
   return view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, depth_m);

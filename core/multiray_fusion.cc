@@ -11,10 +11,10 @@ namespace sacfuse {
 
 void ValidateMultirayOptions(const MultirayOptions& o) {
   OptionChecker c;
-  c.Greater("multiray.depth_tolerance_gsd", o.depth_tolerance_gsd, 0.0);
-  c.InRange("multiray.min_rays", o.min_rays, 2, 65);
-  c.Greater("multiray.ray_sigma_px", o.ray_sigma_px, 0.0);
-  c.AtLeast("multiray.depth_sigma_gsd", o.depth_sigma_gsd, 0.0);
+  c.Greater("MultirayOptions.depth_tolerance_gsd", o.depth_tolerance_gsd, 0.0);
+  c.InRange("MultirayOptions.min_rays", o.min_rays, 2, 65);
+  c.Greater("MultirayOptions.ray_sigma_px", o.ray_sigma_px, 0.0);
+  c.AtLeast("MultirayOptions.depth_sigma_gsd", o.depth_sigma_gsd, 0.0);
   c.ThrowIfFailed("multiray options");
 }
 

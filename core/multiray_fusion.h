@@ -31,7 +31,8 @@ struct MultirayOptions {
   double depth_sigma_gsd = 2.0;      // precision of a member's depth along its ray, local GSDs; 0 = rays only
 };
 
-// Throws ConfigError naming multiray.<key> for every invalid field.
+// Throws ConfigError naming MultirayOptions.<field> for every invalid field (an invariant of the run; the YAML
+// keys are checked by config/option_table.cc).
 void ValidateMultirayOptions(const MultirayOptions& options);
 
 // `plan` null = ViewPlanFromDepth(views, NeighborViewOptions{}). Superpixels are not used (may be null).

@@ -84,13 +84,13 @@ TEST(MultirayFusionTest, BiasedDepthsAreNoMembersAndPureRaysIgnoreDepth) {
   }
 }
 
-TEST(MultirayFusionTest, OptionsAreValidatedWithTheirKeys) {
+TEST(MultirayFusionTest, OptionsAreValidatedWithTheirFields) {
   MultirayOptions o;
   o.min_rays = 1;
   o.depth_sigma_gsd = -1;
   const std::string what = testing::OptionErrorOf([&] { ValidateMultirayOptions(o); });
-  EXPECT_NE(what.find("multiray.min_rays = 1"), std::string::npos) << what;
-  EXPECT_NE(what.find("multiray.depth_sigma_gsd = -1"), std::string::npos) << what;
+  EXPECT_NE(what.find("MultirayOptions.min_rays = 1"), std::string::npos) << what;
+  EXPECT_NE(what.find("MultirayOptions.depth_sigma_gsd = -1"), std::string::npos) << what;
 }
 
 }  // namespace

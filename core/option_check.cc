@@ -21,20 +21,6 @@ void OptionChecker::Require(bool ok, const std::string& key, const std::string& 
   if (!ok) errors_.push_back(key + " = " + value + ": " + rule);
 }
 
-void OptionChecker::Absorb(const std::function<void()>& validate) {
-  try {
-    validate();
-  } catch (const ConfigError& e) {
-    std::istringstream lines(e.what());
-    std::string line;
-    std::getline(lines, line);  // the "<where>: invalid configuration" header
-    while (std::getline(lines, line)) {
-      const size_t start = line.find_first_not_of(' ');
-      if (start != std::string::npos) errors_.push_back(line.substr(start));
-    }
-  }
-}
-
 void OptionChecker::ThrowIfFailed(const std::string& where) const {
   if (errors_.empty()) return;
   std::string msg = where + ": invalid configuration";

@@ -1,8 +1,8 @@
 #pragma once
-// Validation helpers for option structs: each failed rule becomes one message naming the YAML key, the value
-// and the rule, e.g. "fusion.tau_m = -1: must be > 0". All messages are collected and thrown together so a user
-// fixes the whole config in one go.
-#include <functional>
+// Validation helpers for option structs: each failed rule becomes one message naming the option, the value and
+// the rule, e.g. "SacOptions.tau_m = -1: must be > 0". All messages are collected and thrown together. Used for
+// core's own invariants and the options of tools' commands; the YAML keys of `sacfuse run` are checked from the
+// table in config/option_table.cc.
 #include <sstream>
 #include <string>
 #include <vector>
@@ -30,8 +30,6 @@ class OptionChecker {
   void OneOf(const std::string& key, const std::string& value, const std::vector<std::string>& allowed);
   void NotEmpty(const std::string& key, const std::string& value);
   void Require(bool ok, const std::string& key, const std::string& value, const std::string& rule);
-  // Adds the failed rules of a nested validator (a ConfigError whose message lists one rule per indented line).
-  void Absorb(const std::function<void()>& validate);
 
   bool ok() const { return errors_.empty(); }
   const std::vector<std::string>& errors() const { return errors_; }

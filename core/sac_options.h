@@ -75,7 +75,8 @@ struct SacOptions {
   SuperpixelOptions superpixels;
 };
 
-// Throws ConfigError naming `fusion.<key>`, the value and the rule for every invalid field.
+// Throws ConfigError naming `SacOptions.<field>`, the value and the rule for every invalid field, then for the
+// superpixel options. An invariant of RunSacFusion: the YAML keys are checked by config/option_table.cc.
 void ValidateSacOptions(const SacOptions& options);
 
 }  // namespace sacfuse

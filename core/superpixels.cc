@@ -436,7 +436,7 @@ class Fnv1a {
 template <typename T>
 std::string Rule(const std::string& field, const T& value, const std::string& rule) {
   std::ostringstream os;
-  os << "superpixels." << field << " = " << value << ": " << rule;
+  os << "SuperpixelOptions." << field << " = " << value << ": " << rule;
   return os.str();
 }
 

@@ -69,7 +69,8 @@ struct SuperpixelMap {
 // options, Error for unusable inputs.
 SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, const SuperpixelOptions& options);
 
-// Throws ConfigError listing every broken rule as "superpixels.<field> = v: rule" (joined by "; ").
+// Throws ConfigError listing every broken rule as "SuperpixelOptions.<field> = v: rule", one per line (an invariant
+// of ComputeSuperpixels; the YAML keys superpixels.* are checked by config/option_table.cc).
 void ValidateSuperpixelOptions(const SuperpixelOptions& options);
 
 // Neighbouring clusters (4-connectivity): result[i] lists the clusters sharing an edge with cluster i, sorted,

@@ -446,9 +446,9 @@ TEST(SuperpixelsTest, ValidationNamesEveryBrokenField) {
     FAIL() << "expected ConfigError";
   } catch (const ConfigError& e) {
     const std::string m = e.what();
-    for (const char* part : {"superpixels.region_size_px = 1", "superpixels.ruler = 0", "superpixels.iterations = 0",
-                             "superpixels.algorithm = seeds", "superpixels.depth_weight = -1",
-                             "superpixels.min_valid_pixels = 0"}) {
+    for (const char* part : {"SuperpixelOptions.region_size_px = 1", "SuperpixelOptions.ruler = 0",
+                             "SuperpixelOptions.iterations = 0", "SuperpixelOptions.algorithm = seeds",
+                             "SuperpixelOptions.depth_weight = -1", "SuperpixelOptions.min_valid_pixels = 0"}) {
       EXPECT_NE(m.find(part), std::string::npos) << part << " missing in: " << m;
     }
   }

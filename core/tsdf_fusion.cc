@@ -12,11 +12,12 @@ namespace sacfuse {
 
 void ValidateTsdfOptions(const TsdfOptions& o) {
   OptionChecker c;
-  c.Greater("tsdf.voxel_size_gsd", o.voxel_size_gsd, 0.0);
-  c.Require(o.truncation_gsd > o.voxel_size_gsd, "tsdf.truncation_gsd", OptionChecker::ToString(o.truncation_gsd),
-            "must be > tsdf.voxel_size_gsd (" + OptionChecker::ToString(o.voxel_size_gsd) + ")");
-  c.AtLeast("tsdf.min_weight", o.min_weight, 1.0);
-  c.AtLeast("tsdf.max_memory_gb", o.max_memory_gb, 0.0);
+  c.Greater("TsdfOptions.voxel_size_gsd", o.voxel_size_gsd, 0.0);
+  c.Require(o.truncation_gsd > o.voxel_size_gsd, "TsdfOptions.truncation_gsd",
+            OptionChecker::ToString(o.truncation_gsd),
+            "must be > voxel_size_gsd (" + OptionChecker::ToString(o.voxel_size_gsd) + ")");
+  c.AtLeast("TsdfOptions.min_weight", o.min_weight, 1.0);
+  c.AtLeast("TsdfOptions.max_memory_gb", o.max_memory_gb, 0.0);
   c.ThrowIfFailed("tsdf options");
 }
 

@@ -28,7 +28,8 @@ struct TsdfOptions {
                                  // limit here (jobs use resources.memory_gb). >= 0
 };
 
-// Throws ConfigError naming tsdf.<key> for every invalid field.
+// Throws ConfigError naming TsdfOptions.<field> for every invalid field (an invariant of the run; the YAML keys
+// are checked by config/option_table.cc).
 void ValidateTsdfOptions(const TsdfOptions& options);
 
 // The block's GSD from the rasters: median over views of (median valid depth / focal of the depth raster), in

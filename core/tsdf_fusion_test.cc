@@ -102,8 +102,8 @@ TEST(TsdfFusionTest, VoxelMemoryIsBoundedAndOptionsAreValidated) {
   bad.truncation_gsd = 0.5;  // not more than the voxel
   bad.min_weight = 0;
   const std::string what = testing::OptionErrorOf([&] { ValidateTsdfOptions(bad); });
-  EXPECT_NE(what.find("tsdf.truncation_gsd = 0.5"), std::string::npos) << what;
-  EXPECT_NE(what.find("tsdf.min_weight = 0"), std::string::npos) << what;
+  EXPECT_NE(what.find("TsdfOptions.truncation_gsd = 0.5"), std::string::npos) << what;
+  EXPECT_NE(what.find("TsdfOptions.min_weight = 0"), std::string::npos) << what;
 }
 
 }  // namespace

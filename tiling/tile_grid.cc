@@ -11,13 +11,13 @@ namespace sacfuse {
 
 void ValidateTilingOptions(const TilingOptions& o) {
   OptionChecker check;
-  check.AtLeast("tiling.tile_size_m", o.tile_size_m, 0.0);
-  check.AtLeast("tiling.halo_m", o.halo_m, 0.0);
-  check.AtLeast("tiling.window_margin_px", o.window_margin_px, 0);
-  check.Require(o.claim_timeout_s > 0, "tiling.claim_timeout_s", OptionChecker::ToString(o.claim_timeout_s),
+  check.AtLeast("TilingOptions.tile_size_m", o.tile_size_m, 0.0);
+  check.AtLeast("TilingOptions.halo_m", o.halo_m, 0.0);
+  check.AtLeast("TilingOptions.window_margin_px", o.window_margin_px, 0);
+  check.Require(o.claim_timeout_s > 0, "TilingOptions.claim_timeout_s", OptionChecker::ToString(o.claim_timeout_s),
                 "must be > 0");
-  check.Require(o.z_max_m > o.z_min_m, "tiling.z_max_m", OptionChecker::ToString(o.z_max_m),
-                "must be > tiling.z_min_m (" + OptionChecker::ToString(o.z_min_m) + ")");
+  check.Require(o.z_max_m > o.z_min_m, "TilingOptions.z_max_m", OptionChecker::ToString(o.z_max_m),
+                "must be > z_min_m (" + OptionChecker::ToString(o.z_min_m) + ")");
   check.ThrowIfFailed("tiling options");
 }
 

@@ -27,7 +27,8 @@ struct TilingOptions {
   double claim_timeout_s = 6 * 3600.0;
 };
 
-// Throws ConfigError listing every broken rule as "tiling.<field> = v: rule".
+// Throws ConfigError listing every broken rule as "TilingOptions.<field> = v: rule" (an invariant of tile planning;
+// the YAML keys tiling.* are checked by config/option_table.cc).
 void ValidateTilingOptions(const TilingOptions& options);
 
 // Bounds of a tile grid, enforced where it is made (TileGrid's constructor): more tiles than this cannot be

@@ -101,8 +101,9 @@ TEST(TileGridTest, RejectsBadInputsAndOptions) {
     ValidateTilingOptions(o);
     FAIL();
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("tiling.tile_size_m = -1: must be >= 0"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("tiling.z_max_m"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("TilingOptions.tile_size_m = -1: must be >= 0"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("TilingOptions.z_max_m"), std::string::npos) << e.what();
   }
 }
 

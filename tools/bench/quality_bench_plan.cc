@@ -115,12 +115,6 @@ void CheckNames(const std::vector<std::string>& given, const std::vector<std::st
   }
 }
 
-const std::vector<std::string>& MethodNames() {
-  static const std::vector<std::string> names = {"sac", "union", "consistency", "disparity_normal", "tsdf",
-                                                 "multiray"};
-  return names;
-}
-
 RowSpec MakeRow(const std::string& section, const std::string& scene, double scale, const std::string& name,
                 const std::string& block_id, RowKind kind, const std::string& method) {
   RowSpec row;
@@ -297,7 +291,7 @@ std::string RowSpec::Folder() const { return block_id + "/" + Slug(name); }
 
 BenchPlan BuildBenchPlan(const QualityBenchOptions& o) {
   CheckNames(o.blocks, BlockNames(), "--blocks");
-  CheckNames(o.methods, MethodNames(), "--methods");
+  CheckNames(o.methods, FusionMethodNameList(), "--methods");
   if (o.methods.empty()) throw ConfigError("--methods: empty; name at least one fusion.method");
   if (o.error_scales.empty()) throw ConfigError("--error-scales: empty; give at least one scale such as 1");
   for (const double s : o.error_scales) {

@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "config/fusion_method_kind.h"
+
 namespace sacfuse::bench {
 
 struct QualityBenchOptions {
@@ -16,7 +18,7 @@ struct QualityBenchOptions {
   std::vector<double> error_scales = {1.0, 2.5};  // `sacfuse simulate --error-scale`, one block per scale
   uint64_t seed = 7;                        // the same seed for every block (scene, cameras and errors)
   std::string preset = "small";             // simulate preset of every main block (procedural and LiDAR)
-  std::vector<std::string> methods = {"sac", "union", "consistency", "disparity_normal", "tsdf", "multiray"};
+  std::vector<std::string> methods = FusionMethodNameList();  // every fusion.method
   std::string colmap_path;                  // resolved COLMAP binary; "" = no COLMAP rows
   bool ablations = true;
   std::string ablation_preset = "tiny";     // the procedural block of the ablation rows
