@@ -11,7 +11,7 @@ MethodGeometry BlockMethodGeometry(const DepthBlock& input, const std::vector<De
                                    double z_min_m, double z_max_m, const NeighborViewOptions& options) {
   const std::vector<View>& views = input.views();
   const size_t n = views.size();
-  std::vector<FootprintBox> boxes(n);
+  std::vector<Box2d> boxes(n);
   std::vector<Eigen::Vector3d> directions(n);
   std::vector<double> sigma(n, 1e300);
   std::vector<double> gsd;

@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/backproject.h"
 #include "core/error.h"
 
 namespace sacfuse::sim {
@@ -293,7 +294,7 @@ RenderedView RenderView(const RenderRequest& req) {
       if (key == kEmpty) continue;
       const float depth = KeyDepth(key);
       const Eigen::Vector3f n = DecodeNormal(static_cast<uint32_t>(key & 0xffffffffu));
-      const Eigen::Vector3d p = center + r_wc * cam.Unproject(col + 0.5, row + 0.5, depth);
+      const Eigen::Vector3d p = center + r_wc * DepthPixelInCamera(cam, col, row, depth);
       const Eigen::Vector3f rgb = surface.Albedo(p, n) * req.lighting.Shade(n) * 255.0f;
       for (int c = 0; c < 3; ++c) {
         out.image.at(row, col, c) = static_cast<uint8_t>(std::clamp(std::lround(rgb[c]), 0L, 255L));
