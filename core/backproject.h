@@ -8,12 +8,18 @@
 
 namespace sacfuse {
 
-// World point of depth pixel (col, row) with z-depth `depth_m`; `depth_camera` is the view's camera scaled to
-// the depth raster. The pixel centre (col + 0.5, row + 0.5) is used (COLMAP's stereo_fusion uses the corner,
-// a half-pixel shift we do not copy).
+// The one pixel convention of sacfuse: depth pixel (col, row) stands for the ray through its centre
+// (col + 0.5, row + 0.5) (COLMAP's stereo_fusion uses the corner, a half-pixel shift we do not copy; measured
+// worse on aerial-bench, see README). Camera-frame point at z-depth `depth_m` (depth 1: the ray's direction with
+// z = 1); `depth_camera` is the view's camera scaled to the depth raster.
+inline Eigen::Vector3d DepthPixelInCamera(const PinholeCamera& depth_camera, int col, int row, double depth_m) {
+  return depth_camera.Unproject(col + 0.5, row + 0.5, depth_m);
+}
+
+// World point of depth pixel (col, row) with z-depth `depth_m`.
 inline Eigen::Vector3d DepthPixelToWorld(const PinholeCamera& depth_camera, const Rigid3d& world_from_cam, int col,
                                          int row, double depth_m) {
-  return world_from_cam * depth_camera.Unproject(col + 0.5, row + 0.5, depth_m);
+  return world_from_cam * DepthPixelInCamera(depth_camera, col, row, depth_m);
 }
 
 // Streams every valid depth pixel of one view into `sink` as a FusedPoint (colour sampled from `image` at the

@@ -113,7 +113,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         if (combine) {
           const CombinedDepth refined = CombineDepth(views, v, col + 0.5, row + 0.5, d, combine_views[v], noise_factor,
                                                           combine_options);
-          p.point_in_world = view.world_from_cam * view.depth_camera.Unproject(col + 0.5, row + 0.5, refined.depth_m);
+          p.point_in_world = PixelPoint(view, row, col, refined.depth_m);
         }
         p.rgb = PixelColour(view, row, col);
         p.view_index = view.view.index;

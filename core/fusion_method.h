@@ -33,7 +33,7 @@ using PixelOwner = std::function<bool(const Eigen::Vector3d& point_in_world)>;
 struct FusionScope {
   const ViewPlan* plan = nullptr;           // neighbours and order, positions in the views (needs.block_geometry)
   double gsd_m = 0.0;                       // the block's GSD, metres (needs.block_geometry)
-  const FootprintBox* region_xy = nullptr;  // the XY box the views were cut to (a tile's halo); null = unbounded
+  const Box2d* region_xy = nullptr;  // the XY box the views were cut to (a tile's halo); null = unbounded
   PixelOwner owns;                          // empty = every pixel
 };
 

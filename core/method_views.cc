@@ -12,39 +12,7 @@ namespace {
 
 constexpr int kFootprintStridePx = 8;
 
-double IntersectionArea(const FootprintBox& a, const FootprintBox& b) {
-  const Eigen::Vector2d lo = a.min.cwiseMax(b.min);
-  const Eigen::Vector2d hi = a.max.cwiseMin(b.max);
-  if (lo.x() >= hi.x() || lo.y() >= hi.y()) return 0.0;
-  return (hi - lo).prod();
-}
-
 }  // namespace
-
-std::vector<std::vector<uint32_t>> NeighborsFromFootprints(const std::vector<FootprintBox>& boxes,
-                                                           const std::vector<Eigen::Vector3d>& view_directions,
-                                                           const NeighborViewOptions& options) {
-  const size_t n = boxes.size();
-  const double cos_max = std::cos(options.max_view_angle_deg * M_PI / 180.0);
-  std::vector<std::vector<uint32_t>> neighbors(n);
-  for (size_t a = 0; a < n; ++a) {
-    if (boxes[a].empty()) continue;
-    const double area_a = (boxes[a].max - boxes[a].min).prod();
-    std::vector<std::pair<double, uint32_t>> scored;
-    for (size_t b = 0; b < n; ++b) {
-      if (b == a || boxes[b].empty()) continue;
-      const double cos_angle = view_directions[a].dot(view_directions[b]);
-      if (cos_angle < cos_max) continue;
-      const double overlap = IntersectionArea(boxes[a], boxes[b]) / area_a;
-      if (overlap < options.min_footprint_overlap) continue;
-      scored.emplace_back(-overlap * cos_angle, static_cast<uint32_t>(b));
-    }
-    std::sort(scored.begin(), scored.end());
-    const size_t keep = std::min<size_t>(scored.size(), static_cast<size_t>(options.max_views));
-    for (size_t i = 0; i < keep; ++i) neighbors[a].push_back(scored[i].second);
-  }
-  return neighbors;
-}
 
 std::vector<uint32_t> PrecisionOrder(const std::vector<double>& sigma_rel) {
   std::vector<uint32_t> order(sigma_rel.size());
@@ -54,7 +22,7 @@ std::vector<uint32_t> PrecisionOrder(const std::vector<double>& sigma_rel) {
 }
 
 ViewPlan ViewPlanFromDepth(const std::vector<SacView>& views, const NeighborViewOptions& options) {
-  std::vector<FootprintBox> boxes(views.size());
+  std::vector<Box2d> boxes(views.size());
   std::vector<Eigen::Vector3d> directions(views.size());
   std::vector<double> sigma(views.size(), 1e300);
   for (size_t v = 0; v < views.size(); ++v) {

@@ -8,8 +8,8 @@
 namespace sacfuse {
 namespace {
 
-FootprintBox Box(double x0, double y0, double x1, double y1) {
-  FootprintBox b;
+Box2d Box(double x0, double y0, double x1, double y1) {
+  Box2d b;
   b.Extend({x0, y0});
   b.Extend({x1, y1});
   return b;
@@ -19,12 +19,12 @@ TEST(MethodViewsTest, NeighboursNeedOverlapAndSimilarDirectionsAndAreRankedByBot
   const Eigen::Vector3d down(0, 0, -1);
   const Eigen::Vector3d tilted_30(std::sin(M_PI / 6), 0, -std::cos(M_PI / 6));
   const Eigen::Vector3d tilted_70(std::sin(70 * M_PI / 180), 0, -std::cos(70 * M_PI / 180));
-  const std::vector<FootprintBox> boxes = {Box(0, 0, 10, 10),    // 0
+  const std::vector<Box2d> boxes = {Box(0, 0, 10, 10),    // 0
                                            Box(5, 0, 15, 10),    // 1: half of 0
                                            Box(9.8, 0, 20, 10),  // 2: 2 % of 0
                                            Box(0, 0, 10, 10),    // 3: all of 0, tilted 30 degrees
                                            Box(0, 0, 10, 10),    // 4: all of 0, tilted 70 degrees
-                                           FootprintBox{}};      // 5: empty
+                                           Box2d{}};             // 5: empty
   const std::vector<Eigen::Vector3d> dirs = {down, down, down, tilted_30, tilted_70, down};
   NeighborViewOptions o;
   const auto n = NeighborsFromFootprints(boxes, dirs, o);

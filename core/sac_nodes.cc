@@ -5,6 +5,7 @@
 #include <Eigen/Eigenvalues>
 #include <tbb/parallel_for.h>
 
+#include "core/backproject.h"
 #include "core/error.h"
 
 namespace sacfuse {
@@ -45,7 +46,7 @@ std::vector<Eigen::Vector3d> ClusterNormalsInCamera(const SacView& view) {
     for (int col = 0; col < depth.width; col += 2) {
       const float d = depth.at(row, col);
       if (!IsValidDepth(d)) continue;
-      acc[view.superpixels->label(row, col)].Add(view.depth_camera.Unproject(col + 0.5, row + 0.5, d));
+      acc[view.superpixels->label(row, col)].Add(DepthPixelInCamera(view.depth_camera, col, row, d));
     }
   }
   std::vector<Eigen::Vector3d> normals(acc.size());

@@ -41,7 +41,7 @@ double MedianGsdFromDepth(const std::vector<SacView>& views) {
 }
 
 FusionStats RunTsdfFusion(const std::vector<SacView>& views, const TsdfOptions& options, PointSink& sink,
-                          double gsd_m, const FootprintBox* region_xy) {
+                          double gsd_m, const Box2d* region_xy) {
   ValidateTsdfOptions(options);
   FusionStats stats;
   stats.emitted_per_view.assign(views.size(), 0);

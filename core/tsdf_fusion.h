@@ -41,6 +41,6 @@ double MedianGsdFromDepth(const std::vector<SacView>& views);
 // Superpixels are not used (may be null). Counters: voxel_blocks, voxels (allocated).
 // `region_xy`, when given, restricts the voxel grid (and so the points) to that XY box: a tile's halo.
 FusionStats RunTsdfFusion(const std::vector<SacView>& views, const TsdfOptions& options, PointSink& sink,
-                          double gsd_m = 0.0, const FootprintBox* region_xy = nullptr);
+                          double gsd_m = 0.0, const Box2d* region_xy = nullptr);
 
 }  // namespace sacfuse

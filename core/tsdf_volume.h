@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "core/box2d.h"
 #include "core/fusion_stats.h"
 #include "core/method_views.h"
 #include "core/point.h"
@@ -57,7 +58,7 @@ class TsdfVolume {
 
   // Allocates no block whose XY extent misses `region` (a tile's halo: what lies outside cannot reach its core).
   // Voxels inside keep exactly the values they would have without it.
-  void RestrictTo(const FootprintBox& region) { region_ = region; }
+  void RestrictTo(const Box2d& region) { region_ = region; }
 
   size_t num_blocks() const { return blocks_.size(); }
   uint64_t bytes() const;
@@ -89,7 +90,7 @@ class TsdfVolume {
   bool InRegion(const Key& key) const;
 
   double voxel_m_, truncation_m_, block_m_;
-  std::optional<FootprintBox> region_;
+  std::optional<Box2d> region_;
   uint64_t max_bytes_;
   std::unordered_map<Key, uint32_t, KeyHash> index_;
   std::vector<Key> keys_;

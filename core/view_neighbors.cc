@@ -4,52 +4,45 @@
 #include <cmath>
 
 namespace sacfuse {
-namespace {
 
-struct Box {
-  Eigen::Vector2d min = Eigen::Vector2d::Constant(1e300);
-  Eigen::Vector2d max = Eigen::Vector2d::Constant(-1e300);
-  bool empty() const { return min.x() > max.x(); }
-  double area() const { return empty() ? 0.0 : (max - min).prod(); }
-};
-
-double IntersectionArea(const Box& a, const Box& b) {
-  const Eigen::Vector2d lo = a.min.cwiseMax(b.min);
-  const Eigen::Vector2d hi = a.max.cwiseMin(b.max);
-  if (lo.x() >= hi.x() || lo.y() >= hi.y()) return 0.0;
-  return (hi - lo).prod();
-}
-
-}  // namespace
-
-std::vector<std::vector<uint32_t>> SelectNeighborViews(const std::vector<SacView>& views, const NodeTable& nodes,
-                                                       const SacOptions& options) {
-  const size_t n = views.size();
-  std::vector<Box> boxes(n);
-  for (const auto& node : nodes.nodes) {
-    if (!node.valid) continue;
-    boxes[node.view].min = boxes[node.view].min.cwiseMin(node.point_in_world.head<2>());
-    boxes[node.view].max = boxes[node.view].max.cwiseMax(node.point_in_world.head<2>());
-  }
+std::vector<std::vector<uint32_t>> NeighborsFromFootprints(const std::vector<Box2d>& boxes,
+                                                           const std::vector<Eigen::Vector3d>& view_directions,
+                                                           const NeighborViewOptions& options) {
+  const size_t n = boxes.size();
   const double cos_max = std::cos(options.max_view_angle_deg * M_PI / 180.0);
   std::vector<std::vector<uint32_t>> neighbors(n);
   for (size_t a = 0; a < n; ++a) {
-    if (boxes[a].area() <= 0) continue;
-    const Eigen::Vector3d dir_a = views[a].view.ViewDirectionInWorld();
+    if (!boxes[a].HasArea()) continue;
+    const double area_a = boxes[a].Area();
     std::vector<std::pair<double, uint32_t>> scored;
     for (size_t b = 0; b < n; ++b) {
-      if (b == a || boxes[b].area() <= 0) continue;
-      const double cos_angle = dir_a.dot(views[b].view.ViewDirectionInWorld());
+      if (b == a || !boxes[b].HasArea()) continue;
+      const double cos_angle = view_directions[a].dot(view_directions[b]);
       if (cos_angle < cos_max) continue;
-      const double overlap = IntersectionArea(boxes[a], boxes[b]) / boxes[a].area();
+      const double overlap = OverlapArea(boxes[a], boxes[b]) / area_a;
       if (overlap < options.min_footprint_overlap) continue;
       scored.emplace_back(-overlap * cos_angle, static_cast<uint32_t>(b));
     }
     std::sort(scored.begin(), scored.end());
-    const size_t keep = std::min<size_t>(scored.size(), options.max_neighbor_views);
+    const size_t keep = std::min<size_t>(scored.size(), static_cast<size_t>(std::max(0, options.max_views)));
     for (size_t i = 0; i < keep; ++i) neighbors[a].push_back(scored[i].second);
   }
   return neighbors;
+}
+
+std::vector<std::vector<uint32_t>> SelectNeighborViews(const std::vector<SacView>& views, const NodeTable& nodes,
+                                                       const SacOptions& options) {
+  std::vector<Box2d> boxes(views.size());
+  for (const auto& node : nodes.nodes) {
+    if (node.valid) boxes[node.view].Extend(node.point_in_world.head<2>());
+  }
+  std::vector<Eigen::Vector3d> directions(views.size());
+  for (size_t v = 0; v < views.size(); ++v) directions[v] = views[v].view.ViewDirectionInWorld();
+  NeighborViewOptions o;
+  o.max_views = options.max_neighbor_views;
+  o.max_view_angle_deg = options.max_view_angle_deg;
+  o.min_footprint_overlap = options.min_footprint_overlap;
+  return NeighborsFromFootprints(boxes, directions, o);
 }
 
 }  // namespace sacfuse

@@ -5,12 +5,32 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "core/box2d.h"
 #include "core/sac_nodes.h"
 #include "core/sac_options.h"
 #include "core/sac_view.h"
 
 namespace sacfuse {
 
+// The one rule for neighbour views, of SAC and of every comparison method: footprint boxes overlapping by at least
+// min_footprint_overlap of the view's box, viewing directions within max_view_angle_deg, the best max_views by
+// overlap x cos(angle), ties by index. The job fills these from fusion.max_neighbor_views,
+// fusion.max_view_angle_deg and fusion.min_footprint_overlap, so every method reprojects into the same views.
+struct NeighborViewOptions {
+  int max_views = 10;                   // per view
+  double max_view_angle_deg = 65.0;     // degrees
+  double min_footprint_overlap = 0.05;  // fraction of the view's footprint box, 0-1
+};
+
+// neighbors[v] from footprint boxes (world XY; a box without area has no neighbours and is nobody's) and viewing
+// directions (unit, world frame), both indexed like the views. Deterministic.
+std::vector<std::vector<uint32_t>> NeighborsFromFootprints(const std::vector<Box2d>& boxes,
+                                                           const std::vector<Eigen::Vector3d>& view_directions,
+                                                           const NeighborViewOptions& options);
+
+// SAC's neighbours: the rule above on the XY boxes of each view's valid nodes, with
 // neighbors[v] = up to max_neighbor_views other views, best first (score = overlap fraction x cos(angle), ties by
 // index). Deterministic.
 std::vector<std::vector<uint32_t>> SelectNeighborViews(const std::vector<SacView>& views, const NodeTable& nodes,

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <tbb/parallel_for.h>
 
+#include "core/backproject.h"
 #include "core/depth_combine.h"
 
 namespace sacfuse {
@@ -37,7 +38,7 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
       const float d = depth.at(row, col);
       if (!IsValidDepth(d)) continue;
       const double gsd = view.GsdAt(d);
-      const Eigen::Vector3d ray_cam = view.depth_camera.Unproject(col + 0.5, row + 0.5, 1.0);
+      const Eigen::Vector3d ray_cam = DepthPixelInCamera(view.depth_camera, col, row, 1.0);
       const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * static_cast<double>(d));
       const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (d + gsd));
       const double s_v = DepthNoiseScale(view, d);

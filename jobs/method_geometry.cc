@@ -11,7 +11,7 @@ MethodGeometry BlockMethodGeometry(const DepthBlock& input, const std::vector<De
                                    double z_min_m, double z_max_m, const NeighborViewOptions& options) {
   const std::vector<View>& views = input.views();
   const size_t n = views.size();
-  std::vector<FootprintBox> boxes(n);
+  std::vector<Box2d> boxes(n);
   std::vector<Eigen::Vector3d> directions(n);
   std::vector<double> sigma(n, 1e300);
   std::vector<double> gsd;
@@ -23,11 +23,7 @@ MethodGeometry BlockMethodGeometry(const DepthBlock& input, const std::vector<De
   }
   for (size_t v = 0; v < n; ++v) {
     const View& view = views[v];
-    const Bounds2d b = FootprintBounds(view, z_min_m, z_max_m);
-    if (!b.IsEmpty()) {
-      boxes[v].Extend(b.min);
-      boxes[v].Extend(b.max);
-    }
+    boxes[v] = FootprintBounds(view, z_min_m, z_max_m);
     directions[v] = view.ViewDirectionInWorld();
     const Eigen::Vector3d centre = view.CenterInWorld();
     if (directions[v].z() < -1e-9) {

@@ -17,7 +17,7 @@ struct CrossSectionInputs {
   const TopGrid* grid = nullptr;              // of the fused cloud
   // The LAS files holding the fused points of a strip box (fused.las, or the tiles that meet it), and how to
   // name them on the page.
-  std::function<std::vector<std::string>(const Bounds2d& strip_box, std::string* source)> after_files;
+  std::function<std::vector<std::string>(const Box2d& strip_box, std::string* source)> after_files;
   std::string reference_las;                  // "" = none; when set, the strip is picked inside its bounds
   const DepthBlock* input = nullptr;          // nullptr = no "before" panel
   std::vector<Rgb> colours;                   // by view index

@@ -145,14 +145,14 @@ std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::str
   if (config.tiling.tile_size_m <= 0) config.tiling.tile_size_m = manifest.value("tile_size_m", 0.0);
   const std::string hash = ResultSettingsHash(config);
   // Core bounds and estimates from plan.json.
-  std::map<std::string, std::pair<Bounds2d, uint64_t>> planned;
+  std::map<std::string, std::pair<Box2d, uint64_t>> planned;
   if (ReadText(fs::path(config.output.dir) / "plan.json", &text)) {
     try {
       const nlohmann::json plan = nlohmann::json::parse(text);
       for (const auto& t : plan.at("tiles")) {
         const auto core = t.at("core").get<std::vector<double>>();
         if (core.size() != 4) continue;
-        Bounds2d b;
+        Box2d b;
         b.min = {core[0], core[1]};
         b.max = {core[2], core[3]};
         planned[t.at("id").get<std::string>()] = {b, t.value("memory_bytes", uint64_t{0})};

@@ -339,7 +339,7 @@ std::string TilesSection(const ReportData& d) {
   std::ostringstream s;
   s << "<h2>4. Tiles</h2>\n";
   if (!d.tiled) {
-    Bounds2d extent;
+    Box2d extent;
     if (d.cloud.exists && d.cloud.points > 0) {
       extent.Extend(Eigen::Vector2d(d.cloud.min[0], d.cloud.min[1]));
       extent.Extend(Eigen::Vector2d(d.cloud.max[0], d.cloud.max[1]));

@@ -116,8 +116,8 @@ std::optional<double> ProfileStrip::Along(double x, double y) const {
   return s;
 }
 
-Bounds2d ProfileStrip::Box() const {
-  Bounds2d b;
+Box2d ProfileStrip::Box() const {
+  Box2d b;
   const Eigen::Vector2d d = end_xy - start_xy;
   const double length = d.norm();
   const Eigen::Vector2d n = length > 0 ? Eigen::Vector2d(-d.y() / length, d.x() / length) : Eigen::Vector2d(0, 0);

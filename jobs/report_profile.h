@@ -40,7 +40,7 @@ struct ProfileStrip {
   // the ends; nullopt for any other point.
   std::optional<double> Along(double x, double y) const;
   // XY bounding box of the strip (centreline grown by half_width_m).
-  Bounds2d Box() const;
+  Box2d Box() const;
 };
 
 struct StripPickOptions {
@@ -53,7 +53,7 @@ struct StripPickOptions {
   double min_fill = 0.5;           // "surrounded by data": filled fraction of each quadrant around the cell
   // When not empty, only cells inside this XY box are candidates (the report passes the reference cloud's
   // bounds, so the section can be compared with it); ignored when no filled cell lies inside.
-  Bounds2d within;
+  Box2d within;
   double min_length_m = 20.0;
   double max_length_m = 150.0;
 };

@@ -13,12 +13,12 @@ constexpr size_t kLasChunk = 1 << 16;
 
 void SampleLasInStrip(const std::vector<std::string>& las_paths, const ProfileStrip& strip, ProfileSample* sample,
                       bool keep_source_id) {
-  const Bounds2d box = strip.Box();
+  const Box2d box = strip.Box();
   std::vector<LasPoint> chunk;
   for (const std::string& path : las_paths) {
     LasReader reader(path);
     const LasHeader& h = reader.header();
-    Bounds2d file_box;
+    Box2d file_box;
     file_box.Extend(Eigen::Vector2d(h.min.x(), h.min.y()));
     file_box.Extend(Eigen::Vector2d(h.max.x(), h.max.y()));
     if (h.point_count == 0 || !file_box.Intersects(box)) continue;
@@ -39,7 +39,7 @@ void SampleLasInStrip(const std::vector<std::string>& las_paths, const ProfileSt
 
 DepthStripStats SampleDepthInStrip(const DepthBlock& input, const ProfileStrip& strip, ProfileSample* sample) {
   DepthStripStats stats;
-  const Bounds2d box = strip.Box();
+  const Box2d box = strip.Box();
   for (const View& view : input.views()) {
     const DepthRasterSize size = input.DepthSize(view);
     const std::optional<PixelWindow> window =

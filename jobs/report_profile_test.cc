@@ -139,7 +139,7 @@ TEST(ReportProfileTest, CandidatesCanBeRestrictedToABox) {
   ASSERT_TRUE(strip.has_value());
   EXPECT_NEAR(strip->relief_m, 10.0, 1e-4);
   // A box without data is ignored.
-  o.within = Bounds2d{};
+  o.within = Box2d{};
   o.within.Extend(Eigen::Vector2d(500.0, 500.0));
   o.within.Extend(Eigen::Vector2d(600.0, 600.0));
   EXPECT_NEAR(PickProfileStrip(g, o)->relief_m, 30.0, 1e-4);
@@ -159,7 +159,7 @@ TEST(ReportProfileTest, AlongMeasuresFromTheStartWithinTheHalfWidth) {
   EXPECT_FALSE(s.Along(10.3, 12.0).has_value());  // too far across
   EXPECT_FALSE(s.Along(10.0, 4.9).has_value());   // before the start
   EXPECT_FALSE(s.Along(10.0, 25.1).has_value());  // past the end
-  const Bounds2d b = s.Box();
+  const Box2d b = s.Box();
   EXPECT_NEAR(b.min.x(), 9.8, 1e-12);
   EXPECT_NEAR(b.max.x(), 10.2, 1e-12);
   EXPECT_NEAR(b.min.y(), 5.0, 1e-12);

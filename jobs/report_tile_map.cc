@@ -14,23 +14,23 @@ constexpr double kLegend = 30.0;  // px below the map for its legend
 
 std::string Hex(const Rgb& c) { return HexColour(c[0], c[1], c[2]); }
 
-Bounds2d TileBox(const ReportTile& t) {
+Box2d TileBox(const ReportTile& t) {
   if (t.has_core) return t.core;
-  Bounds2d b;
+  Box2d b;
   b.min = Eigen::Vector2d(t.ix, t.iy);
   b.max = Eigen::Vector2d(t.ix + 1, t.iy + 1);
   return b;
 }
 
 struct Fit {
-  Bounds2d world;
+  Box2d world;
   double scale = 1.0;  // px per world unit
   double width = 0.0, height = 0.0;
   double X(double x) const { return kMargin + (x - world.min.x()) * scale; }
   double Y(double y) const { return kMargin + (world.max.y() - y) * scale; }
 };
 
-Fit FitBox(const Bounds2d& world, double width_px, double max_height_px) {
+Fit FitBox(const Box2d& world, double width_px, double max_height_px) {
   Fit f;
   f.world = world;
   const double ww = std::max(1e-9, world.max.x() - world.min.x()), wh = std::max(1e-9, world.max.y() - world.min.y());
@@ -75,7 +75,7 @@ Rgb TimeRampColour(double t, double t_min, double t_max) {
 
 std::string TileMapSvg(const std::vector<ReportTile>& tiles, TileColouring colouring, double width_px,
                        double max_height_px) {
-  Bounds2d world;
+  Box2d world;
   double t_min = 1e300, t_max = -1e300;
   for (const ReportTile& t : tiles) {
     world.Extend(TileBox(t));
@@ -93,7 +93,7 @@ std::string TileMapSvg(const std::vector<ReportTile>& tiles, TileColouring colou
   const Fit fit = FitBox(world, width_px, max_height_px - kLegend);
   OpenSvg(s, std::max(fit.width, 260.0), fit.height + kLegend);
   for (const ReportTile& t : tiles) {
-    const Bounds2d b = TileBox(t);
+    const Box2d b = TileBox(t);
     const double x = fit.X(b.min.x()), y = fit.Y(b.max.y());
     const double w = (b.max.x() - b.min.x()) * fit.scale, h = (b.max.y() - b.min.y()) * fit.scale;
     Rgb fill = TileStatusColour(t.status);
@@ -150,7 +150,7 @@ std::string TileMapSvg(const std::vector<ReportTile>& tiles, TileColouring colou
   return s.str();
 }
 
-std::string UntiledExtentSvg(const Bounds2d& extent, double width_px, double max_height_px) {
+std::string UntiledExtentSvg(const Box2d& extent, double width_px, double max_height_px) {
   std::ostringstream s;
   if (extent.IsEmpty()) {
     OpenSvg(s, width_px, 40);

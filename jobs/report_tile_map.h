@@ -17,7 +17,7 @@ struct ReportTile {
   std::string id;            // "ix_iy"
   int ix = 0, iy = 0;        // grid column (x) and row (y, northwards), parsed from the id
   bool has_core = false;     // core bounds known (from plan.json); else placed by ix, iy
-  Bounds2d core;             // world XY, metres
+  Box2d core;             // world XY, metres
   TileStatus status = TileStatus::kPending;
   std::string reason;        // failed: the error; pending: why not done
   uint64_t points = 0;       // done: points in its core
@@ -40,6 +40,6 @@ std::string TileMapSvg(const std::vector<ReportTile>& tiles, TileColouring colou
                        double max_height_px);
 
 // An untiled run: one rectangle of the extent's aspect, "untiled" and its size in metres.
-std::string UntiledExtentSvg(const Bounds2d& extent, double width_px, double max_height_px);
+std::string UntiledExtentSvg(const Box2d& extent, double width_px, double max_height_px);
 
 }  // namespace sacfuse

@@ -71,13 +71,13 @@ TEST(ReportTileMapTest, TimeMapRampsFromFastToSlowAndGreysUnfinishedTiles) {
 }
 
 TEST(ReportTileMapTest, UntiledShowsOneExtent) {
-  Bounds2d b;
+  Box2d b;
   b.min = {0, 0};
   b.max = {130, 65};
   const std::string svg = UntiledExtentSvg(b, 360, 260);
   EXPECT_NE(svg.find(">untiled<"), std::string::npos);
   EXPECT_NE(svg.find("130.0 m × 65.0 m"), std::string::npos);
-  EXPECT_NE(UntiledExtentSvg(Bounds2d{}, 360, 260).find("untiled"), std::string::npos);
+  EXPECT_NE(UntiledExtentSvg(Box2d{}, 360, 260).find("untiled"), std::string::npos);
 }
 
 }  // namespace

@@ -66,7 +66,7 @@ MapFigure WriteMap(const TopGrid& grid, const std::vector<Rgb>& colours, uint64_
 
 // The files holding the fused points of the strip: for a tiled run whose tiles are all done and placed, the tile
 // files whose core meets the strip (far less than fused.las); else fused.las.
-std::vector<std::string> AfterFiles(const ReportData& d, const JobConfig& config, const Bounds2d& strip_box,
+std::vector<std::string> AfterFiles(const ReportData& d, const JobConfig& config, const Box2d& strip_box,
                                     std::string* source) {
   if (d.tiled && !d.tiles.empty()) {
     std::vector<std::string> files;
@@ -131,7 +131,7 @@ CrossSectionInputs CrossSectionFor(ReportData& d, const JobConfig& config, const
       d.warnings.push_back("reference " + config.evaluation.reference + " not found: not in the cross-section");
     }
   }
-  in.after_files = [&d, &config](const Bounds2d& box, std::string* source) {
+  in.after_files = [&d, &config](const Box2d& box, std::string* source) {
     return AfterFiles(d, config, box, source);
   };
   return in;

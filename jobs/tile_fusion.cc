@@ -64,7 +64,7 @@ FusedViews FuseTile(const DepthBlock& input, const TilePlan& plan, const Planned
   if (method->needs().block_geometry) {
     geometry = BlockMethodGeometry(input, plan.depth_sizes, plan.z_min_m, plan.z_max_m, NeighborOptionsOf(fusion.sac));
   }
-  FootprintBox halo;
+  Box2d halo;
   halo.Extend(tile.halo.min);
   halo.Extend(tile.halo.max);
   FusionScope scope;

@@ -33,7 +33,7 @@ std::string Path(const std::string& tiles_dir, const std::string& name) {
 
 nlohmann::json BoxJson(const std::array<double, 4>& b) { return {b[0], b[1], b[2], b[3]}; }
 
-std::array<double, 4> BoxOf(const Bounds2d& b) { return {b.min.x(), b.min.y(), b.max.x(), b.max.y()}; }
+std::array<double, 4> BoxOf(const Box2d& b) { return {b.min.x(), b.min.y(), b.max.x(), b.max.y()}; }
 
 nlohmann::json InputsJson(const TileInputs& inputs) {
   nlohmann::json views = nlohmann::json::array();

@@ -25,7 +25,7 @@ double Percentile(std::vector<double>& values, double q) {
   return values[k];
 }
 
-nlohmann::json BoxJson(const Bounds2d& b) { return {b.min.x(), b.min.y(), b.max.x(), b.max.y()}; }
+nlohmann::json BoxJson(const Box2d& b) { return {b.min.x(), b.min.y(), b.max.x(), b.max.y()}; }
 
 
 }  // namespace
@@ -49,7 +49,7 @@ TilePlan BuildTilePlan(const DepthBlock& input, const TilingOptions& options) {
   std::string z_source;
   BlockHeightRange(input.SceneHeights(), options, &z_min, &z_max, &z_source);
   const auto& views = input.views();
-  Bounds2d area;
+  Box2d area;
   for (const View& view : views) area.Extend(FootprintBounds(view, z_min, z_max));
   if (area.IsEmpty()) {
     throw InputError(input.source(), "no view's footprint meets the height range [" + std::to_string(z_min) + ", " +
@@ -103,7 +103,7 @@ std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const st
                      {"window_pixels", t.window_pixels},
                      {"memory_bytes", t.memory_bytes}});
   }
-  const Bounds2d& area = plan.grid.area();
+  const Box2d& area = plan.grid.area();
   const nlohmann::json j = {{"version", VersionString()},
                             {"tile_size_m", plan.options.tile_size_m},
                             {"halo_m", plan.options.halo_m},

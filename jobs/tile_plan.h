@@ -25,7 +25,7 @@ struct TileViewWindow {
 struct PlannedTile {
   TileIndex index;
   std::string id;                      // "ix_iy"
-  Bounds2d core, halo;                 // core is half-open [min, max)
+  Box2d core, halo;                 // core is half-open [min, max)
   std::vector<TileViewWindow> views;   // in view order
   uint64_t window_pixels = 0;          // sum over views
   uint64_t memory_bytes = 0;           // estimate, TileBytes(window_pixels) (jobs/memory_model.h)

@@ -21,8 +21,8 @@ std::optional<std::array<Eigen::Vector2d, 4>> GroundFootprint(const View& view, 
   return out;
 }
 
-Bounds2d FootprintBounds(const View& view, double min_z_m, double max_z_m) {
-  Bounds2d b;
+Box2d FootprintBounds(const View& view, double min_z_m, double max_z_m) {
+  Box2d b;
   for (double z : {min_z_m, max_z_m}) {
     if (auto fp = GroundFootprint(view, z)) {
       for (const auto& p : *fp) b.Extend(p);

@@ -7,30 +7,18 @@
 
 #include <Eigen/Core>
 
+#include "core/box2d.h"
 #include "core/view.h"
 
 namespace sacfuse {
 
-struct Bounds2d {
-  Eigen::Vector2d min = Eigen::Vector2d::Constant(1e300);
-  Eigen::Vector2d max = Eigen::Vector2d::Constant(-1e300);
-  bool IsEmpty() const { return min.x() > max.x() || min.y() > max.y(); }
-  void Extend(const Eigen::Vector2d& p) { min = min.cwiseMin(p); max = max.cwiseMax(p); }
-  void Extend(const Bounds2d& b) { min = min.cwiseMin(b.min); max = max.cwiseMax(b.max); }
-  bool Contains(const Eigen::Vector2d& p) const {
-    return p.x() >= min.x() && p.y() >= min.y() && p.x() <= max.x() && p.y() <= max.y();
-  }
-  bool Intersects(const Bounds2d& b) const {
-    return !(b.min.x() > max.x() || b.max.x() < min.x() || b.min.y() > max.y() || b.max.y() < min.y());
-  }
-};
 
 // World XY of the four image corners (top-left, top-right, bottom-right, bottom-left) projected onto the plane
 // z = ground_z_m. Empty when a corner ray does not hit the plane in front of the camera (e.g. above horizon).
 std::optional<std::array<Eigen::Vector2d, 4>> GroundFootprint(const View& view, double ground_z_m);
 
 // Axis-aligned bounds of the footprint on [min_z_m, max_z_m] (both planes), empty when neither plane is hit.
-Bounds2d FootprintBounds(const View& view, double min_z_m, double max_z_m);
+Box2d FootprintBounds(const View& view, double min_z_m, double max_z_m);
 
 // Whether world point p projects inside the view's image and lies in front of it.
 bool ViewSeesPoint(const View& view, const Eigen::Vector3d& point_in_world);

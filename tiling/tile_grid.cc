@@ -30,7 +30,7 @@ std::string Metres(double v) {
 }
 
 // Refuses grids that are too fine before anything proportional to their tile count is allocated.
-void CheckGridSize(const Bounds2d& area, double tile_size_m, double gsd_m) {
+void CheckGridSize(const Box2d& area, double tile_size_m, double gsd_m) {
   const std::string key = "tiling.tile_size_m = " + Metres(tile_size_m) + ": ";
   const std::string area_text = Metres(area.max.x() - area.min.x()) + " x " + Metres(area.max.y() - area.min.y()) +
                                 " m";
@@ -66,7 +66,7 @@ double BlockGsdAtHeight(const std::vector<View>& views, double z_m) {
   return gsd[gsd.size() / 2];
 }
 
-TileGrid::TileGrid(const Bounds2d& area, double tile_size_m, double halo_m, double gsd_m)
+TileGrid::TileGrid(const Box2d& area, double tile_size_m, double halo_m, double gsd_m)
     : area_(area), tile_size_m_(tile_size_m), halo_m_(halo_m), single_(tile_size_m == 0.0) {
   if (area.IsEmpty()) throw Error("tile grid: the project area is empty");
   if (!(tile_size_m >= 0.0) || !(halo_m >= 0.0) || !std::isfinite(tile_size_m) || !std::isfinite(halo_m)) {
@@ -111,16 +111,16 @@ std::optional<TileIndex> TileGrid::Parse(const std::string& id) const {
   return TileIndex{ix, iy};
 }
 
-Bounds2d TileGrid::CoreBounds(const TileIndex& t) const {
+Box2d TileGrid::CoreBounds(const TileIndex& t) const {
   if (single_) return area_;
-  Bounds2d b;
+  Box2d b;
   b.min = {Edge(kx0_ + t.ix), Edge(ky0_ + t.iy)};
   b.max = {Edge(kx0_ + t.ix + 1), Edge(ky0_ + t.iy + 1)};
   return b;
 }
 
-Bounds2d TileGrid::HaloBounds(const TileIndex& t) const {
-  Bounds2d b = CoreBounds(t);
+Box2d TileGrid::HaloBounds(const TileIndex& t) const {
+  Box2d b = CoreBounds(t);
   b.min.array() -= halo_m_;
   b.max.array() += halo_m_;
   return b;
@@ -128,7 +128,7 @@ Bounds2d TileGrid::HaloBounds(const TileIndex& t) const {
 
 bool TileGrid::CoreContains(const TileIndex& t, double x, double y) const {
   if (single_) return true;
-  const Bounds2d b = CoreBounds(t);
+  const Box2d b = CoreBounds(t);
   return x >= b.min.x() && x < b.max.x() && y >= b.min.y() && y < b.max.y();
 }
 

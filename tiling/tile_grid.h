@@ -54,21 +54,21 @@ class TileGrid {
   // to `area`). Throws Error for an empty area or a negative or non-finite size, and ConfigError naming
   // tiling.tile_size_m, its value, the area, the tile count and the limit when the grid would have more than
   // kMaxTiles tiles or (gsd_m > 0, the block's GSD) a tile edge below kMinTileSizeGsd x gsd_m.
-  TileGrid(const Bounds2d& area, double tile_size_m, double halo_m, double gsd_m = 0.0);
+  TileGrid(const Box2d& area, double tile_size_m, double halo_m, double gsd_m = 0.0);
 
   int num_x() const { return num_x_; }
   int num_y() const { return num_y_; }
   size_t size() const { return static_cast<size_t>(num_x_) * num_y_; }
   // Tiles in grid order: row by row (iy), then ix.
   std::vector<TileIndex> Tiles() const;
-  const Bounds2d& area() const { return area_; }
+  const Box2d& area() const { return area_; }
 
   static std::string Id(const TileIndex& t);           // "ix_iy"
   std::optional<TileIndex> Parse(const std::string& id) const;  // nullopt for a malformed or unknown id
 
   // Half-open core [min, max): a point belongs to it when min <= p < max in x and y.
-  Bounds2d CoreBounds(const TileIndex& t) const;
-  Bounds2d HaloBounds(const TileIndex& t) const;  // core grown by halo_m on every side (closed box)
+  Box2d CoreBounds(const TileIndex& t) const;
+  Box2d HaloBounds(const TileIndex& t) const;  // core grown by halo_m on every side (closed box)
   bool CoreContains(const TileIndex& t, double x, double y) const;
   // The tile whose core holds (x, y); exactly one for any XY inside the grid. XY beyond the grid (points whose
   // depth lies outside the planning height range) belong to the nearest border tile (clamped), so no point is
@@ -80,7 +80,7 @@ class TileGrid {
   double Edge(long long k) const { return static_cast<double>(k) * tile_size_m_; }
   long long AxisIndex(double v, long long k0) const;
 
-  Bounds2d area_;
+  Box2d area_;
   double tile_size_m_ = 0.0;
   double halo_m_ = 0.0;
   bool single_ = false;  // tile_size_m == 0

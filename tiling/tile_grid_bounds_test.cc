@@ -16,8 +16,8 @@ namespace {
 
 using testing::ErrorOf;
 
-Bounds2d Area(double x0, double y0, double x1, double y1) {
-  Bounds2d b;
+Box2d Area(double x0, double y0, double x1, double y1) {
+  Box2d b;
   b.Extend(Eigen::Vector2d(x0, y0));
   b.Extend(Eigen::Vector2d(x1, y1));
   return b;

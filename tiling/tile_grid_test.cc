@@ -10,8 +10,8 @@
 namespace sacfuse {
 namespace {
 
-Bounds2d Area(double x0, double y0, double x1, double y1) {
-  Bounds2d b;
+Box2d Area(double x0, double y0, double x1, double y1) {
+  Box2d b;
   b.Extend(Eigen::Vector2d(x0, y0));
   b.Extend(Eigen::Vector2d(x1, y1));
   return b;
@@ -27,11 +27,11 @@ TEST(TileGridTest, AlignedToMultiplesOfTheTileSize) {
   const TileGrid grid(Area(390013.2, 5705007.5, 390061.0, 5705040.0), 20.0, 5.0);
   EXPECT_EQ(grid.num_x(), 4);  // 390000, 390020, 390040, 390060 (390061 lies in the fourth column)
   EXPECT_EQ(grid.num_y(), 3);  // 5705000, 5705020, 5705040 (5705040 itself belongs to the third row)
-  const Bounds2d core = grid.CoreBounds({0, 0});
+  const Box2d core = grid.CoreBounds({0, 0});
   EXPECT_DOUBLE_EQ(core.min.x(), 390000.0);
   EXPECT_DOUBLE_EQ(core.max.x(), 390020.0);
   EXPECT_DOUBLE_EQ(core.min.y(), 5705000.0);
-  const Bounds2d halo = grid.HaloBounds({1, 2});
+  const Box2d halo = grid.HaloBounds({1, 2});
   EXPECT_DOUBLE_EQ(halo.min.x(), 390015.0);
   EXPECT_DOUBLE_EQ(halo.max.x(), 390045.0);
   EXPECT_DOUBLE_EQ(halo.min.y(), 5705035.0);
@@ -75,7 +75,7 @@ TEST(TileGridTest, PointsBeyondTheGridGoToTheNearestBorderTile) {
 }
 
 TEST(TileGridTest, ZeroSizeIsOneTileCoveringEverything) {
-  const Bounds2d area = Area(390013.2, 5705007.5, 390061.0, 5705040.0);
+  const Box2d area = Area(390013.2, 5705007.5, 390061.0, 5705040.0);
   const TileGrid grid(area, 0.0, 5.0);
   ASSERT_EQ(grid.size(), 1u);
   EXPECT_EQ(TileGrid::Id(grid.Tiles()[0]), "0_0");
@@ -93,7 +93,7 @@ TEST(TileGridTest, IdsRoundTrip) {
 }
 
 TEST(TileGridTest, RejectsBadInputsAndOptions) {
-  EXPECT_THROW(TileGrid(Bounds2d{}, 20.0, 5.0), Error);
+  EXPECT_THROW(TileGrid(Box2d{}, 20.0, 5.0), Error);
   TilingOptions o;
   o.tile_size_m = -1;
   o.z_max_m = o.z_min_m;

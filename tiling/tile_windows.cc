@@ -6,7 +6,7 @@
 namespace sacfuse {
 
 std::optional<PixelWindow> ViewWindowForBox(const View& view, int raster_width, int raster_height,
-                                            const Bounds2d& xy, double z_min_m, double z_max_m, int margin_px) {
+                                            const Box2d& xy, double z_min_m, double z_max_m, int margin_px) {
   if (xy.IsEmpty() || raster_width <= 0 || raster_height <= 0) return std::nullopt;
   const PinholeCamera camera = view.camera.Scaled(raster_width, raster_height);
   double u_min = 1e300, u_max = -1e300, v_min = 1e300, v_max = -1e300;

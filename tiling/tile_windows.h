@@ -18,7 +18,7 @@ namespace sacfuse {
 // the view does not see the box (every corner behind the camera, or the projection misses the raster). When
 // some corners are behind the camera and some in front, the whole raster is returned (conservative).
 std::optional<PixelWindow> ViewWindowForBox(const View& view, int raster_width, int raster_height,
-                                            const Bounds2d& xy, double z_min_m, double z_max_m, int margin_px);
+                                            const Box2d& xy, double z_min_m, double z_max_m, int margin_px);
 
 // The camera of a window: `camera_at_raster` (intrinsics at the full raster's resolution) with the principal
 // point shifted by the window origin and the window's size, so pixel (r, c) of the window is pixel

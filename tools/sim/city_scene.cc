@@ -137,10 +137,10 @@ Eigen::Vector3f CityScene::Albedo(const Eigen::Vector3d& p, const Eigen::Vector3
   return GroundAlbedo(layout_, u, v, texture_seed_);
 }
 
-HeightRange CityScene::RangeOver(const Box2& box) const {
+HeightRange CityScene::RangeOver(const Box2d& box) const {
   // City-frame bounds of the box corners.
   double u0 = 1e300, v0 = 1e300, u1 = -1e300, v1 = -1e300;
-  const double xs[] = {box.x0, box.x1}, ys[] = {box.y0, box.y1};
+  const double xs[] = {box.min.x(), box.max.x()}, ys[] = {box.min.y(), box.max.y()};
   for (const double x : xs) {
     for (const double y : ys) {
       double u, v;
@@ -149,7 +149,7 @@ HeightRange CityScene::RangeOver(const Box2& box) const {
     }
   }
   HeightRange r;
-  layout_.terrain.Range(box.x0 - layout_.cx, box.y0 - layout_.cy, box.x1 - layout_.cx, box.y1 - layout_.cy, &r.lo,
+  layout_.terrain.Range(box.min.x() - layout_.cx, box.min.y() - layout_.cy, box.max.x() - layout_.cx, box.max.y() - layout_.cy, &r.lo,
                         &r.hi);
   const int i0 = std::max(0, static_cast<int>(std::floor((u0 - origin_) / cell_)));
   const int i1 = std::min(n_ - 1, static_cast<int>(std::floor((u1 - origin_) / cell_)));

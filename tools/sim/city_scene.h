@@ -17,8 +17,8 @@ class CityScene : public Surface {
   double Height(double x, double y) const override;
   uint8_t Class(double x, double y) const override;
   Eigen::Vector3f Albedo(const Eigen::Vector3d& p, const Eigen::Vector3f& n) const override;
-  HeightRange RangeOver(const Box2& box) const override;
-  Box2 Extent() const override { return Box2::Infinite(); }
+  HeightRange RangeOver(const Box2d& box) const override;
+  Box2d Extent() const override { return Box2d::Infinite(); }
   HeightRange GlobalRange() const override { return global_; }
   std::string Describe() const override;
 

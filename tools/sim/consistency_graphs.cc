@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "core/backproject.h"
 #include "core/error.h"
 #include "io/colmap_array.h"
 #include "io/colmap_consistency_graph.h"
@@ -52,7 +53,7 @@ PointBox BoxOf(const DepthViewRef& v, const ConsistencyGraphOptions& o) {
     for (int col = 0; col < depth.width; ++col) {
       const float d = depth.at(row, col);
       if (!IsValidDepth(d)) continue;
-      const Eigen::Vector3d p = world_from_cam * v.camera.Unproject(col + 0.5, row + 0.5, d);
+      const Eigen::Vector3d p = DepthPixelToWorld(v.camera, world_from_cam, col, row, d);
       box.valid = true;
       box.lo = box.lo.cwiseMin(p);
       box.hi = box.hi.cwiseMax(p);

@@ -62,7 +62,7 @@ TEST(DepthErrorsTest, DisabledIsExact) {
 }
 
 TEST(DepthErrorsTest, PoseErrorOffsetsTheCloudRigidly) {
-  const BoxScene scene(kGround, Box2{-20, -15, 20, 15}, 12.0);
+  const BoxScene scene(kGround, Box2d{-20, -15, 20, 15}, 12.0);
   const PinholeCamera cam = PinholeCamera::Centered(240, 180, 1000.0);
   const Rigid3d truth_pose = NadirPose(3.0, -2.0);
   const DepthMap depth = RenderDepth(scene, cam, truth_pose);
@@ -167,7 +167,7 @@ TEST(DepthErrorsTest, BlunderAndDropoutFractions) {
 }
 
 TEST(DepthErrorsTest, FatteningAndOcclusionAtEdgesOnly) {
-  const BoxScene scene(kGround, Box2{-15, -10, 15, 10}, 10.0);
+  const BoxScene scene(kGround, Box2d{-15, -10, 15, 10}, 10.0);
   const PinholeCamera cam = PinholeCamera::Centered(300, 220, 1000.0);
   const DepthMap truth = RenderDepth(scene, cam, NadirPose(0, 0));
   SimErrorOptions o = AllOff();

@@ -102,15 +102,15 @@ bool FootprintOnPlane(const PinholeCamera& camera, const Rigid3d& cam_from_world
   return true;
 }
 
-double ClippedArea(const std::vector<Eigen::Vector2d>& polygon, const Box2& box) {
-  auto p = ClipPolygon(polygon, 0, box.x0, true);
-  p = ClipPolygon(p, 0, box.x1, false);
-  p = ClipPolygon(p, 1, box.y0, true);
-  p = ClipPolygon(p, 1, box.y1, false);
+double ClippedArea(const std::vector<Eigen::Vector2d>& polygon, const Box2d& box) {
+  auto p = ClipPolygon(polygon, 0, box.min.x(), true);
+  p = ClipPolygon(p, 0, box.max.x(), false);
+  p = ClipPolygon(p, 1, box.min.y(), true);
+  p = ClipPolygon(p, 1, box.max.y(), false);
   return p.size() < 3 ? 0.0 : PolygonArea(p);
 }
 
-FlightPlan PlanFlight(const SimOptions& o, const Box2& area, double ground_z) {
+FlightPlan PlanFlight(const SimOptions& o, const Box2d& area, double ground_z) {
   FlightPlan plan;
   const double pixel_mm = o.pixel_size_um / 1000.0;
   plan.nadir_focal_px = o.nadir_focal_mm / pixel_mm;
@@ -133,7 +133,7 @@ FlightPlan PlanFlight(const SimOptions& o, const Box2& area, double ground_z) {
   }
   // Footprints relative to the exposure centre (the same for every exposure).
   std::vector<std::vector<Eigen::Vector2d>> relative(specs.size());
-  Box2 reach{1e300, 1e300, -1e300, -1e300};
+  Box2d reach{1e300, 1e300, -1e300, -1e300};
   for (size_t s = 0; s < specs.size(); ++s) {
     const Rigid3d pose = PoseAt(Eigen::Vector3d(0, 0, plan.flying_height_m),
                                 WorldFromCameraRotation(specs[s].toward, specs[s].tilt_rad));
@@ -142,15 +142,15 @@ FlightPlan PlanFlight(const SimOptions& o, const Box2& area, double ground_z) {
                         ": an image corner looks above the horizon; lower the tilt or lengthen the focal length");
     }
     for (const auto& p : relative[s]) {
-      reach.x0 = std::min(reach.x0, p.x()), reach.x1 = std::max(reach.x1, p.x());
-      reach.y0 = std::min(reach.y0, p.y()), reach.y1 = std::max(reach.y1, p.y());
+      reach.min.x() = std::min(reach.min.x(), p.x()), reach.max.x() = std::max(reach.max.x(), p.x());
+      reach.min.y() = std::min(reach.min.y(), p.y()), reach.max.y() = std::max(reach.max.y(), p.y());
     }
   }
-  const Eigen::Vector2d center = area.center();
-  const int k0 = static_cast<int>(std::floor((area.x0 - reach.x1 - center.x()) / plan.baseline_m));
-  const int k1 = static_cast<int>(std::ceil((area.x1 - reach.x0 - center.x()) / plan.baseline_m));
-  const int l0 = static_cast<int>(std::floor((area.y0 - reach.y1 - center.y()) / plan.line_spacing_m));
-  const int l1 = static_cast<int>(std::ceil((area.y1 - reach.y0 - center.y()) / plan.line_spacing_m));
+  const Eigen::Vector2d center = area.Center();
+  const int k0 = static_cast<int>(std::floor((area.min.x() - reach.max.x() - center.x()) / plan.baseline_m));
+  const int k1 = static_cast<int>(std::ceil((area.max.x() - reach.min.x() - center.x()) / plan.baseline_m));
+  const int l0 = static_cast<int>(std::floor((area.min.y() - reach.max.y() - center.y()) / plan.line_spacing_m));
+  const int l1 = static_cast<int>(std::ceil((area.max.y() - reach.min.y() - center.y()) / plan.line_spacing_m));
   if (static_cast<double>(k1 - k0 + 1) * (l1 - l0 + 1) > 2e6) {
     throw ConfigError("forward_overlap = " + std::to_string(o.forward_overlap) + ", side_overlap = " +
                       std::to_string(o.side_overlap) + ": more than 2 million exposures; lower the overlaps");
@@ -174,7 +174,7 @@ FlightPlan PlanFlight(const SimOptions& o, const Box2& area, double ground_z) {
           centroid += 0.25 * q;
         }
         const double inside = ClippedArea(poly, area);
-        if (inside <= 1e-6 * area.width() * area.height()) continue;
+        if (inside <= 1e-6 * area.Width() * area.Height()) continue;
         Candidate c;
         c.view.kind = specs[s].kind;
         c.view.camera = specs[s].camera;

@@ -51,7 +51,7 @@ struct FlightPlan {
   int num_oblique() const;
 };
 
-FlightPlan PlanFlight(const SimOptions& options, const Box2& area, double ground_z);
+FlightPlan PlanFlight(const SimOptions& options, const Box2d& area, double ground_z);
 
 // World-from-camera rotation of a camera tilted by `tilt_rad` from nadir toward horizontal unit `toward`.
 Eigen::Matrix3d WorldFromCameraRotation(const Eigen::Vector2d& toward, double tilt_rad);
@@ -62,6 +62,6 @@ bool FootprintOnPlane(const PinholeCamera& camera, const Rigid3d& cam_from_world
                       std::vector<Eigen::Vector2d>* corners);
 
 // Area of a convex polygon clipped to a box (Sutherland-Hodgman + shoelace), m^2.
-double ClippedArea(const std::vector<Eigen::Vector2d>& polygon, const Box2& box);
+double ClippedArea(const std::vector<Eigen::Vector2d>& polygon, const Box2d& box);
 
 }  // namespace sacfuse::sim

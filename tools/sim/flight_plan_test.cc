@@ -11,7 +11,7 @@
 namespace sacfuse::sim {
 namespace {
 
-Box2 AreaOf(const SimOptions& o) {
+Box2d AreaOf(const SimOptions& o) {
   return {o.origin_east_m, o.origin_north_m, o.origin_east_m + o.area_width_m, o.origin_north_m + o.area_height_m};
 }
 
@@ -57,8 +57,8 @@ TEST(FlightPlanTest, DortmundMatchesTableII) {
       std::vector<Eigen::Vector2d> fa, fb;
       ASSERT_TRUE(FootprintOnPlane(a->camera, a->cam_from_world, o.ground_height_m, &fa));
       ASSERT_TRUE(FootprintOnPlane(b->camera, b->cam_from_world, o.ground_height_m, &fb));
-      const Box2 box_a{fa[0].x(), fa[2].y(), fa[2].x(), fa[0].y()};  // nadir: top-left = north-west
-      const double overlap = ClippedArea(fb, box_a) / (box_a.width() * box_a.height());
+      const Box2d box_a{fa[0].x(), fa[2].y(), fa[2].x(), fa[0].y()};  // nadir: top-left = north-west
+      const double overlap = ClippedArea(fb, box_a) / (box_a.Width() * box_a.Height());
       if (std::abs(d.y()) < 1e-6 && std::abs(d.x() - plan.baseline_m) < 1e-6) {
         EXPECT_NEAR(overlap, 0.75, 1e-6);
         ++pairs_along;
@@ -110,7 +110,7 @@ TEST(FlightPlanTest, TinyAndSmallCoverTheArea) {
   };
   for (const Expect& e : {Expect{"tiny", 10, 20, 4}, Expect{"small", 30, 60, 3}}) {
     const SimOptions o = SimPreset(e.preset);
-    const Box2 area = AreaOf(o);
+    const Box2d area = AreaOf(o);
     const FlightPlan plan = PlanFlight(o, area, o.ground_height_m);
     EXPECT_GE(static_cast<int>(plan.views.size()), e.min_views) << e.preset;
     EXPECT_LE(static_cast<int>(plan.views.size()), e.max_views) << e.preset;
@@ -124,7 +124,7 @@ TEST(FlightPlanTest, TinyAndSmallCoverTheArea) {
     int min_coverage = 1 << 30;
     for (int j = 0; j < 20; ++j) {
       for (int i = 0; i < 20; ++i) {
-        const Eigen::Vector2d p(area.x0 + (i + 0.5) * area.width() / 20, area.y0 + (j + 0.5) * area.height() / 20);
+        const Eigen::Vector2d p(area.min.x() + (i + 0.5) * area.Width() / 20, area.min.y() + (j + 0.5) * area.Height() / 20);
         int count = 0;
         for (const auto& f : footprints) count += InQuad(f, p) ? 1 : 0;
         min_coverage = std::min(min_coverage, count);
@@ -138,7 +138,7 @@ TEST(FlightPlanTest, CapsKeepViewsNearestTheCentre) {
   SimOptions o = SimPreset("small");
   o.max_nadir_views = 0;
   o.max_oblique_views = 0;
-  const Box2 area = AreaOf(o);
+  const Box2d area = AreaOf(o);
   const FlightPlan all = PlanFlight(o, area, o.ground_height_m);
   o.max_nadir_views = 3;
   o.max_oblique_views = 5;
@@ -150,7 +150,7 @@ TEST(FlightPlanTest, CapsKeepViewsNearestTheCentre) {
   double worst_kept = 0.0, best_dropped = 1e300;
   for (const PlannedView& v : all.views) {
     if (v.kind != ViewKind::kNadir) continue;
-    const double d = (v.footprint_center - area.center()).norm();
+    const double d = (v.footprint_center - area.Center()).norm();
     bool kept = false;
     for (const PlannedView& c : capped.views) {
       kept |= c.kind == ViewKind::kNadir && (c.footprint_center - v.footprint_center).norm() < 1e-9;

@@ -26,15 +26,15 @@ LasScene::LasScene(const LasSceneOptions& o) : path_(o.path), seed_(StreamKey(o.
   const LasHeader& header = reader.header();
   wkt_ = header.Wkt();
   has_rgb_ = FormatHasRgb(header.point_format);
-  const Box2 file{header.min.x(), header.min.y(), header.max.x(), header.max.y()};
-  if (file.IsEmpty()) throw InputError(o.path, "the header bounds are empty; no area to simulate");
+  const Box2d file{header.min.x(), header.min.y(), header.max.x(), header.max.y()};
+  if (!file.HasArea()) throw InputError(o.path, "the header bounds are empty; no area to simulate");
   area_ = file;
-  const Eigen::Vector2d c = file.center();
-  if (o.area_width_m > 0.0 && o.area_width_m < file.width()) {
-    area_.x0 = c.x() - 0.5 * o.area_width_m, area_.x1 = c.x() + 0.5 * o.area_width_m;
+  const Eigen::Vector2d c = file.Center();
+  if (o.area_width_m > 0.0 && o.area_width_m < file.Width()) {
+    area_.min.x() = c.x() - 0.5 * o.area_width_m, area_.max.x() = c.x() + 0.5 * o.area_width_m;
   }
-  if (o.area_height_m > 0.0 && o.area_height_m < file.height()) {
-    area_.y0 = c.y() - 0.5 * o.area_height_m, area_.y1 = c.y() + 0.5 * o.area_height_m;
+  if (o.area_height_m > 0.0 && o.area_height_m < file.Height()) {
+    area_.min.y() = c.y() - 0.5 * o.area_height_m, area_.max.y() = c.y() + 0.5 * o.area_height_m;
   }
   extent_ = area_.Expanded(o.margin_m).Intersection(file);
   if (o.cell_m > 0.0) {
@@ -42,17 +42,17 @@ LasScene::LasScene(const LasSceneOptions& o) : path_(o.path), seed_(StreamKey(o.
   } else {
     const double first = header.points_by_return[0] > 0 ? static_cast<double>(header.points_by_return[0])
                                                         : static_cast<double>(header.point_count);
-    const double density = std::max(1e-3, first / (file.width() * file.height()));
+    const double density = std::max(1e-3, first / (file.Width() * file.Height()));
     cell_ = std::clamp(std::round(std::sqrt(3.0 / density) / 0.05) * 0.05, 0.1, 2.0);
   }
-  width_ = std::max(2, static_cast<int>(std::ceil(extent_.width() / cell_)));
-  height_ = std::max(2, static_cast<int>(std::ceil(extent_.height() / cell_)));
+  width_ = std::max(2, static_cast<int>(std::ceil(extent_.Width() / cell_)));
+  height_ = std::max(2, static_cast<int>(std::ceil(extent_.Height() / cell_)));
   if (static_cast<double>(width_) * height_ > 4e8) {
     throw ConfigError("las_cell_m = " + std::to_string(cell_) + ": the DSM of " + o.path +
                       " would have more than 4e8 cells; use a larger cell or a smaller area");
   }
-  extent_.x1 = extent_.x0 + width_ * cell_;
-  extent_.y1 = extent_.y0 + height_ * cell_;
+  extent_.max.x() = extent_.min.x() + width_ * cell_;
+  extent_.max.y() = extent_.min.y() + height_ * cell_;
   z_base_ = header.min.z();
   const size_t n = static_cast<size_t>(width_) * height_;
   z_.assign(n, kNoZ);
@@ -64,8 +64,8 @@ LasScene::LasScene(const LasSceneOptions& o) : path_(o.path), seed_(StreamKey(o.
   while (reader.Read(&chunk, 1 << 16) > 0) {
     for (const LasPoint& p : chunk) {
       if (p.return_number > 1 || (p.flags & 0x4) != 0 || p.classification == 7 || p.classification == 18) continue;
-      const int col = static_cast<int>(std::floor((p.xyz.x() - extent_.x0) / cell_));
-      const int row = static_cast<int>(std::floor((p.xyz.y() - extent_.y0) / cell_));
+      const int col = static_cast<int>(std::floor((p.xyz.x() - extent_.min.x()) / cell_));
+      const int row = static_cast<int>(std::floor((p.xyz.y() - extent_.min.y()) / cell_));
       if (col < 0 || row < 0 || col >= width_ || row >= height_) continue;
       const size_t i = Index(row, col);
       const auto z = static_cast<float>(p.xyz.z() - z_base_);
@@ -86,8 +86,8 @@ LasScene::LasScene(const LasSceneOptions& o) : path_(o.path), seed_(StreamKey(o.
   if (points_used_ == 0) {
     std::ostringstream os;
     os.precision(12);
-    os << "no first-return points inside the simulated area [" << area_.x0 << ", " << area_.x1 << "] x ["
-       << area_.y0 << ", " << area_.y1 << "]";
+    os << "no first-return points inside the simulated area [" << area_.min.x() << ", " << area_.max.x() << "] x ["
+       << area_.min.y() << ", " << area_.max.y() << "]";
     throw InputError(o.path, os.str());
   }
   for (size_t i = 0; i < n; ++i) {
@@ -98,7 +98,7 @@ LasScene::LasScene(const LasSceneOptions& o) : path_(o.path), seed_(StreamKey(o.
   std::vector<float> inside;
   for (int row = 0; row < height_; ++row) {
     for (int col = 0; col < width_; ++col) {
-      const double x = extent_.x0 + (col + 0.5) * cell_, y = extent_.y0 + (row + 0.5) * cell_;
+      const double x = extent_.min.x() + (col + 0.5) * cell_, y = extent_.min.y() + (row + 0.5) * cell_;
       if (area_.Contains(x, y)) inside.push_back(z_[Index(row, col)]);
     }
   }
@@ -189,14 +189,14 @@ void LasScene::BuildBlockRanges() {
 
 bool LasScene::Cell(double x, double y, int* row, int* col) const {
   if (!extent_.Contains(x, y)) return false;
-  *col = std::clamp(static_cast<int>(std::floor((x - extent_.x0) / cell_)), 0, width_ - 1);
-  *row = std::clamp(static_cast<int>(std::floor((y - extent_.y0) / cell_)), 0, height_ - 1);
+  *col = std::clamp(static_cast<int>(std::floor((x - extent_.min.x()) / cell_)), 0, width_ - 1);
+  *row = std::clamp(static_cast<int>(std::floor((y - extent_.min.y()) / cell_)), 0, height_ - 1);
   return true;
 }
 
 double LasScene::Height(double x, double y) const {
   if (!extent_.Contains(x, y)) return std::numeric_limits<double>::quiet_NaN();
-  const double fx = (x - extent_.x0) / cell_ - 0.5, fy = (y - extent_.y0) / cell_ - 0.5;
+  const double fx = (x - extent_.min.x()) / cell_ - 0.5, fy = (y - extent_.min.y()) / cell_ - 0.5;
   const int c0 = std::clamp(static_cast<int>(std::floor(fx)), 0, width_ - 1);
   const int r0 = std::clamp(static_cast<int>(std::floor(fy)), 0, height_ - 1);
   const int c1 = std::min(c0 + 1, width_ - 1), r1 = std::min(r0 + 1, height_ - 1);
@@ -219,7 +219,7 @@ Eigen::Vector3f LasScene::Albedo(const Eigen::Vector3d& p, const Eigen::Vector3f
   if (!Cell(x, y, &row, &col)) return Eigen::Vector3f(0.3f, 0.3f, 0.3f);
   const size_t i = Index(row, col);
   const uint8_t cls = class_[i];
-  const double lx = p.x() - extent_.x0, ly = p.y() - extent_.y0;
+  const double lx = p.x() - extent_.min.x(), ly = p.y() - extent_.min.y();
   // A pseudo-building per 25 m cell gives roof and façade colours that change between houses.
   Building b;
   b.seed = static_cast<uint32_t>(Hash3(seed_, static_cast<uint64_t>(std::floor(lx / 25.0)),
@@ -271,13 +271,13 @@ Eigen::Vector3f LasScene::Albedo(const Eigen::Vector3d& p, const Eigen::Vector3f
   return Eigen::Vector3f(0.28f, 0.42f, 0.16f) * static_cast<float>(0.85 + 0.3 * Fbm(seed_ + 13, lx, ly, 4.0, 4));
 }
 
-HeightRange LasScene::RangeOver(const Box2& box) const {
+HeightRange LasScene::RangeOver(const Box2d& box) const {
   HeightRange r;
   if (!box.Intersects(extent_)) return r;
-  const int c0 = std::clamp(static_cast<int>(std::floor((box.x0 - extent_.x0) / cell_)) - 1, 0, width_ - 1);
-  const int c1 = std::clamp(static_cast<int>(std::floor((box.x1 - extent_.x0) / cell_)) + 1, 0, width_ - 1);
-  const int r0 = std::clamp(static_cast<int>(std::floor((box.y0 - extent_.y0) / cell_)) - 1, 0, height_ - 1);
-  const int r1 = std::clamp(static_cast<int>(std::floor((box.y1 - extent_.y0) / cell_)) + 1, 0, height_ - 1);
+  const int c0 = std::clamp(static_cast<int>(std::floor((box.min.x() - extent_.min.x()) / cell_)) - 1, 0, width_ - 1);
+  const int c1 = std::clamp(static_cast<int>(std::floor((box.max.x() - extent_.min.x()) / cell_)) + 1, 0, width_ - 1);
+  const int r0 = std::clamp(static_cast<int>(std::floor((box.min.y() - extent_.min.y()) / cell_)) - 1, 0, height_ - 1);
+  const int r1 = std::clamp(static_cast<int>(std::floor((box.max.y() - extent_.min.y()) / cell_)) + 1, 0, height_ - 1);
   for (int br = r0 / kBlock; br <= r1 / kBlock; ++br) {
     for (int bc = c0 / kBlock; bc <= c1 / kBlock; ++bc) {
       const size_t b = static_cast<size_t>(br) * blocks_x_ + bc;

@@ -33,12 +33,12 @@ class LasScene : public Surface {
   double Height(double x, double y) const override;
   uint8_t Class(double x, double y) const override;
   Eigen::Vector3f Albedo(const Eigen::Vector3d& p, const Eigen::Vector3f& n) const override;
-  HeightRange RangeOver(const Box2& box) const override;
-  Box2 Extent() const override { return extent_; }
+  HeightRange RangeOver(const Box2d& box) const override;
+  Box2d Extent() const override { return extent_; }
   HeightRange GlobalRange() const override { return global_; }
   std::string Describe() const override;
 
-  const Box2& area() const { return area_; }
+  const Box2d& area() const { return area_; }
   double ground_z() const { return ground_z_; }  // 5th percentile of the DSM inside the area
   double cell_m() const { return cell_; }
   bool has_rgb() const { return has_rgb_; }
@@ -55,9 +55,9 @@ class LasScene : public Surface {
   std::string path_;
   std::string wkt_;
   uint64_t seed_;
-  Box2 area_, extent_;
+  Box2d area_, extent_;
   double cell_ = 0.25;
-  int width_ = 0, height_ = 0;       // cells; row 0 at extent_.y0 (south)
+  int width_ = 0, height_ = 0;       // cells; row 0 at extent_.min.y() (south)
   std::vector<float> z_;             // relative to z_base_
   double z_base_ = 0.0;
   std::vector<uint8_t> class_;

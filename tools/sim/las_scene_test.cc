@@ -27,25 +27,25 @@ TEST(LasSceneTest, ZurichDsmCropped) {
   o.path = path;
   o.area_width_m = o.area_height_m = 40.0;
   const LasScene scene(o);
-  EXPECT_NEAR(scene.area().width(), 40.0, 1e-9);
-  EXPECT_NEAR(scene.area().height(), 40.0, 1e-9);
+  EXPECT_NEAR(scene.area().Width(), 40.0, 1e-9);
+  EXPECT_NEAR(scene.area().Height(), 40.0, 1e-9);
   LasHeader header;
   {
     LasReader reader(path);
     header = reader.header();
   }
-  EXPECT_NEAR(scene.area().center().x(), 0.5 * (header.min.x() + header.max.x()), 1e-6);
+  EXPECT_NEAR(scene.area().Center().x(), 0.5 * (header.min.x() + header.max.x()), 1e-6);
   EXPECT_GT(scene.ground_z(), header.min.z() - 1e-6);
   EXPECT_LT(scene.ground_z(), header.max.z());
   std::set<int> classes;
-  for (double y = scene.area().y0 + 0.5; y < scene.area().y1; y += 1.0) {
-    for (double x = scene.area().x0 + 0.5; x < scene.area().x1; x += 1.0) {
+  for (double y = scene.area().min.y() + 0.5; y < scene.area().max.y(); y += 1.0) {
+    for (double x = scene.area().min.x() + 0.5; x < scene.area().max.x(); x += 1.0) {
       const double z = scene.Height(x, y);
       ASSERT_TRUE(std::isfinite(z));
       EXPECT_GE(z, header.min.z() - 1e-3);
       EXPECT_LE(z, header.max.z() + 1e-3);
       classes.insert(scene.Class(x, y));
-      const HeightRange r = scene.RangeOver(Box2{x - 0.5, y - 0.5, x + 0.5, y + 0.5});
+      const HeightRange r = scene.RangeOver(Box2d{x - 0.5, y - 0.5, x + 0.5, y + 0.5});
       EXPECT_LE(r.lo, z + 1e-3);
       EXPECT_GE(r.hi, z - 1e-3);
     }

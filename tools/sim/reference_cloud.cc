@@ -21,12 +21,12 @@ std::array<uint16_t, 3> ToRgb16(const Eigen::Vector3f& albedo) {
 
 }  // namespace
 
-uint64_t WriteSampledReference(const Surface& surface, const Box2& area, double density, uint64_t key,
+uint64_t WriteSampledReference(const Surface& surface, const Box2d& area, double density, uint64_t key,
                                const std::string& path, const ReferenceProgress& progress) {
   const double spacing = 1.0 / std::sqrt(density);
-  const int nx = std::max(1, static_cast<int>(std::round(area.width() / spacing)));
-  const int ny = std::max(1, static_cast<int>(std::round(area.height() / spacing)));
-  const double sx = area.width() / nx, sy = area.height() / ny;
+  const int nx = std::max(1, static_cast<int>(std::round(area.Width() / spacing)));
+  const int ny = std::max(1, static_cast<int>(std::round(area.Height() / spacing)));
+  const double sx = area.Width() / nx, sy = area.Height() / ny;
   LasWriterOptions options;
   LasWriter writer(path, options);
   const Eigen::Vector3f up(0.0f, 0.0f, 1.0f);
@@ -42,8 +42,8 @@ uint64_t WriteSampledReference(const Surface& surface, const Box2& area, double 
       for (int col = 0; col < nx; ++col) {
         const size_t i = static_cast<size_t>(row - row0) * nx + col;
         const uint64_t h = Hash3(key, static_cast<uint64_t>(row), static_cast<uint64_t>(col));
-        const double x = area.x0 + (col + HashToUnit(h)) * sx;
-        const double y = area.y0 + (row + HashToUnit(SplitMix64(h))) * sy;
+        const double x = area.min.x() + (col + HashToUnit(h)) * sx;
+        const double y = area.min.y() + (row + HashToUnit(SplitMix64(h))) * sy;
         const double z = surface.Height(x, y);
         if (!std::isfinite(z)) continue;
         LasPoint& p = chunk[i];
@@ -67,7 +67,7 @@ uint64_t WriteSampledReference(const Surface& surface, const Box2& area, double 
   return writer.num_points();
 }
 
-uint64_t WriteLasReference(const std::string& las_path, const Surface& surface, const Box2& area,
+uint64_t WriteLasReference(const std::string& las_path, const Surface& surface, const Box2d& area,
                            const std::string& path) {
   LasReader reader(las_path);
   const int format = reader.header().point_format;

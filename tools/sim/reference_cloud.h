@@ -14,10 +14,10 @@ namespace sacfuse::sim {
 
 using ReferenceProgress = std::function<void(size_t done, size_t total)>;
 
-uint64_t WriteSampledReference(const Surface& surface, const Box2& area, double density_pts_m2, uint64_t key,
+uint64_t WriteSampledReference(const Surface& surface, const Box2d& area, double density_pts_m2, uint64_t key,
                                const std::string& path, const ReferenceProgress& progress = {});
 
-uint64_t WriteLasReference(const std::string& las_path, const Surface& surface, const Box2& area,
+uint64_t WriteLasReference(const std::string& las_path, const Surface& surface, const Box2d& area,
                            const std::string& path);
 
 }  // namespace sacfuse::sim

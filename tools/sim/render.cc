@@ -8,6 +8,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/backproject.h"
 #include "core/error.h"
 
 namespace sacfuse::sim {
@@ -115,7 +116,7 @@ size_t RasterTriangle(const Vertex& a, const Vertex& b, const Vertex& c, ZTarget
 }
 
 struct Tile {
-  Box2 box;
+  Box2d box;
   double spacing;
 };
 
@@ -154,7 +155,7 @@ RenderedView RenderView(const RenderRequest& req) {
   const HeightRange global = surface.GlobalRange();
   std::vector<Tile> tiles;
   if (!global.IsEmpty() && center.z() > global.hi) {
-    Box2 region{1e300, 1e300, -1e300, -1e300};
+    Box2d region{1e300, 1e300, -1e300, -1e300};
     const double max_reach = 20.0 * (center.z() - global.lo);
     for (int k = 0; k < 16; ++k) {
       const double t = (k % 4) / 4.0;
@@ -175,18 +176,18 @@ RenderedView RenderView(const RenderRequest& req) {
                                                              : Eigen::Vector2d(0.0, 0.0);
           p = center.head<2>() + max_reach * dir;
         }
-        region.x0 = std::min(region.x0, p.x()), region.x1 = std::max(region.x1, p.x());
-        region.y0 = std::min(region.y0, p.y()), region.y1 = std::max(region.y1, p.y());
+        region.min.x() = std::min(region.min.x(), p.x()), region.max.x() = std::max(region.max.x(), p.x());
+        region.min.y() = std::min(region.min.y(), p.y()), region.max.y() = std::max(region.max.y(), p.y());
       }
     }
     region = region.Intersection(surface.Extent());
     const double finest = NearestPowerOfTwo(req.sampling * (center.z() - global.hi) / focal);
     const double tile_size = std::max(1.0, 64.0 * finest);
-    if (!region.IsEmpty()) {
-      const auto i0 = static_cast<int64_t>(std::floor(region.x0 / tile_size));
-      const auto i1 = static_cast<int64_t>(std::floor(region.x1 / tile_size));
-      const auto j0 = static_cast<int64_t>(std::floor(region.y0 / tile_size));
-      const auto j1 = static_cast<int64_t>(std::floor(region.y1 / tile_size));
+    if (region.HasArea()) {
+      const auto i0 = static_cast<int64_t>(std::floor(region.min.x() / tile_size));
+      const auto i1 = static_cast<int64_t>(std::floor(region.max.x() / tile_size));
+      const auto j0 = static_cast<int64_t>(std::floor(region.min.y() / tile_size));
+      const auto j1 = static_cast<int64_t>(std::floor(region.max.y() / tile_size));
       for (int64_t j = j0; j <= j1; ++j) {
         for (int64_t i = i0; i <= i1; ++i) {
           Tile tile;
@@ -197,7 +198,7 @@ RenderedView RenderView(const RenderRequest& req) {
           double u0 = 1e300, v0 = 1e300, u1 = -1e300, v1 = -1e300;
           bool behind = false;
           for (int k = 0; k < 8; ++k) {
-            const Eigen::Vector3d corner((k & 1) ? tile.box.x1 : tile.box.x0, (k & 2) ? tile.box.y1 : tile.box.y0,
+            const Eigen::Vector3d corner((k & 1) ? tile.box.max.x() : tile.box.min.x(), (k & 2) ? tile.box.max.y() : tile.box.min.y(),
                                          (k & 4) ? range.hi : range.lo);
             const Eigen::Vector3d pc = r_cw * (corner - center);
             if (pc.z() <= 1e-3) {
@@ -210,8 +211,8 @@ RenderedView RenderView(const RenderRequest& req) {
           if (behind) continue;
           if (u1 < -2.0 || v1 < -2.0 || u0 > cam.width + 2.0 || v0 > cam.height + 2.0) continue;
           // Nearest point of the tile's 3D box to the camera sets the local GSD.
-          const Eigen::Vector3d nearest(std::clamp(center.x(), tile.box.x0, tile.box.x1),
-                                        std::clamp(center.y(), tile.box.y0, tile.box.y1),
+          const Eigen::Vector3d nearest(std::clamp(center.x(), tile.box.min.x(), tile.box.max.x()),
+                                        std::clamp(center.y(), tile.box.min.y(), tile.box.max.y()),
                                         std::clamp(center.z(), range.lo, range.hi));
           tile.spacing = std::min(tile_size, NearestPowerOfTwo(req.sampling * (nearest - center).norm() / focal));
           tiles.push_back(tile);
@@ -225,10 +226,10 @@ RenderedView RenderView(const RenderRequest& req) {
   for (size_t t = 0; t < tiles.size(); ++t) {
     const Tile& tile = tiles[t];
     const double s = tile.spacing;
-    const auto ix0 = static_cast<int64_t>(std::floor(tile.box.x0 / s)) - 1;
-    const auto ix1 = static_cast<int64_t>(std::ceil(tile.box.x1 / s)) + 1;
-    const auto iy0 = static_cast<int64_t>(std::floor(tile.box.y0 / s)) - 1;
-    const auto iy1 = static_cast<int64_t>(std::ceil(tile.box.y1 / s)) + 1;
+    const auto ix0 = static_cast<int64_t>(std::floor(tile.box.min.x() / s)) - 1;
+    const auto ix1 = static_cast<int64_t>(std::ceil(tile.box.max.x() / s)) + 1;
+    const auto iy0 = static_cast<int64_t>(std::floor(tile.box.min.y() / s)) - 1;
+    const auto iy1 = static_cast<int64_t>(std::ceil(tile.box.max.y() / s)) + 1;
     const int nx = static_cast<int>(ix1 - ix0 + 1), ny = static_cast<int>(iy1 - iy0 + 1);
     std::vector<Vertex> verts(static_cast<size_t>(nx) * ny);
     for (int j = 0; j < ny; ++j) {
@@ -293,7 +294,7 @@ RenderedView RenderView(const RenderRequest& req) {
       if (key == kEmpty) continue;
       const float depth = KeyDepth(key);
       const Eigen::Vector3f n = DecodeNormal(static_cast<uint32_t>(key & 0xffffffffu));
-      const Eigen::Vector3d p = center + r_wc * cam.Unproject(col + 0.5, row + 0.5, depth);
+      const Eigen::Vector3d p = center + r_wc * DepthPixelInCamera(cam, col, row, depth);
       const Eigen::Vector3f rgb = surface.Albedo(p, n) * req.lighting.Shade(n) * 255.0f;
       for (int c = 0; c < 3; ++c) {
         out.image.at(row, col, c) = static_cast<uint8_t>(std::clamp(std::lround(rgb[c]), 0L, 255L));

@@ -63,7 +63,7 @@ TEST(RenderTest, DownsampledDepthIsExactToo) {
 
 TEST(RenderTest, BoxRoofDepthAndWallsInObliques) {
   const double h = 15.0;
-  const BoxScene scene(kGround, Box2{-10.0, -8.0, 10.0, 8.0}, h);
+  const BoxScene scene(kGround, Box2d{-10.0, -8.0, 10.0, 8.0}, h);
   const PinholeCamera cam = PinholeCamera::Centered(200, 150, 600.0);
   const RenderedView nadir = Render(scene, cam, PoseAt({0.0, 0.0, kGround + kHeight}, {0, 1}, 0.0));
   // The roof centre projects to the principal point: pixels (74..75, 99..100) around it.

@@ -6,7 +6,7 @@
 
 namespace sacfuse::sim {
 
-BoxScene::BoxScene(double ground_z, const Box2& box, double height_m)
+BoxScene::BoxScene(double ground_z, const Box2d& box, double height_m)
     : ground_z_(ground_z), box_(box), height_(height_m) {}
 
 double BoxScene::Height(double x, double y) const { return InBox(x, y) ? ground_z_ + height_ : ground_z_; }
@@ -23,7 +23,7 @@ Eigen::Vector3f BoxScene::Albedo(const Eigen::Vector3d& p, const Eigen::Vector3f
                                                             : Eigen::Vector3f(g, g, g);
 }
 
-HeightRange BoxScene::RangeOver(const Box2& b) const {
+HeightRange BoxScene::RangeOver(const Box2d& b) const {
   return {ground_z_, (height_ > 0.0 && b.Intersects(box_)) ? ground_z_ + height_ : ground_z_};
 }
 

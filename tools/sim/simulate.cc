@@ -161,7 +161,7 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
   };
   if (scene.surface == nullptr) throw Error("SimulateScene: no surface");
   const Surface& surface = *scene.surface;
-  const Box2 area{scene.area_x0, scene.area_y0, scene.area_x1, scene.area_y1};
+  const Box2d area{scene.area_x0, scene.area_y0, scene.area_x1, scene.area_y1};
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) throw Error(out_dir + ": cannot create the output folder: " + ec.message());
@@ -186,7 +186,7 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
   const double cell = EvalCellSize(o.eval_cell_m, area);
   CoverageCounter coverage(surface, area, cell);
   const int sparse_count = std::max(
-      o.min_sparse_points, static_cast<int>(std::ceil(area.width() * area.height() / o.sparse_area_per_point_m2)));
+      o.min_sparse_points, static_cast<int>(std::ceil(area.Width() * area.Height() / o.sparse_area_per_point_m2)));
   SparsePointBuilder sparse(surface, area, sparse_count, lighting, StreamKey(o.seed, Stream::kSparse));
 
   Workspace main_ws{out_dir, {}};
@@ -278,8 +278,8 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
       {"crs", scene.crs},
       {"gsd_m", o.gsd_m},
       {"area",
-       {{"x0", area.x0}, {"y0", area.y0}, {"x1", area.x1}, {"y1", area.y1}, {"width_m", area.width()},
-        {"height_m", area.height()}}},
+       {{"x0", area.min.x()}, {"y0", area.min.y()}, {"x1", area.max.x()}, {"y1", area.max.y()}, {"width_m", area.Width()},
+        {"height_m", area.Height()}}},
       {"ground_z_m", scene.ground_z},
       {"options", Json::parse(SimOptionsJson(o))},
       {"flight",
@@ -332,8 +332,8 @@ SimSummary SimulateBlock(const SimOptions& o, const std::string& out_dir, const 
     lo.cell_m = o.las_cell_m;
     lo.seed = o.seed;
     auto las = std::make_unique<sim::LasScene>(lo);
-    spec.area_x0 = las->area().x0, spec.area_y0 = las->area().y0;
-    spec.area_x1 = las->area().x1, spec.area_y1 = las->area().y1;
+    spec.area_x0 = las->area().min.x(), spec.area_y0 = las->area().min.y();
+    spec.area_x1 = las->area().max.x(), spec.area_y1 = las->area().max.y();
     spec.ground_z = las->ground_z();
     spec.crs = las->crs_wkt();
     spec.kind = "las";

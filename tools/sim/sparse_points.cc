@@ -8,13 +8,13 @@
 
 namespace sacfuse::sim {
 
-SparsePointBuilder::SparsePointBuilder(const Surface& surface, const Box2& area, int count, const Lighting& lighting,
+SparsePointBuilder::SparsePointBuilder(const Surface& surface, const Box2d& area, int count, const Lighting& lighting,
                                        uint64_t key)
     : key_(key) {
   Rng rng(key);
   const Eigen::Vector3f up(0.0f, 0.0f, 1.0f);
   for (int k = 0; k < count; ++k) {
-    const double x = rng.Uniform(area.x0, area.x1), y = rng.Uniform(area.y0, area.y1);
+    const double x = rng.Uniform(area.min.x(), area.max.x()), y = rng.Uniform(area.min.y(), area.max.y());
     const double z = surface.Height(x, y);
     if (!std::isfinite(z)) continue;
     Candidate c;

@@ -21,7 +21,7 @@ namespace sacfuse::sim {
 
 class SparsePointBuilder {
  public:
-  SparsePointBuilder(const Surface& surface, const Box2& area, int count, const Lighting& lighting, uint64_t key);
+  SparsePointBuilder(const Surface& surface, const Box2d& area, int count, const Lighting& lighting, uint64_t key);
 
   // Adds the keypoints of view `view_index` (image_id = view_index + 1): to *written_points2D (WRITTEN pose)
   // and *true_points2D (TRUE pose; may be null).

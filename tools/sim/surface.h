@@ -9,31 +9,14 @@
 
 #include <Eigen/Core>
 
+#include "core/box2d.h"
+
 namespace sacfuse::sim {
 
 // LAS classes used by the simulator.
 constexpr uint8_t kClassGround = 2;
 constexpr uint8_t kClassVegetation = 5;
 constexpr uint8_t kClassBuilding = 6;
-
-// Axis-aligned XY box, metres.
-struct Box2 {
-  double x0 = 0.0, y0 = 0.0, x1 = 0.0, y1 = 0.0;
-  double width() const { return x1 - x0; }
-  double height() const { return y1 - y0; }
-  Eigen::Vector2d center() const { return {0.5 * (x0 + x1), 0.5 * (y0 + y1)}; }
-  bool Contains(double x, double y) const { return x >= x0 && x <= x1 && y >= y0 && y <= y1; }
-  bool Intersects(const Box2& b) const { return !(b.x0 > x1 || b.x1 < x0 || b.y0 > y1 || b.y1 < y0); }
-  Box2 Expanded(double m) const { return {x0 - m, y0 - m, x1 + m, y1 + m}; }
-  Box2 Intersection(const Box2& b) const {
-    return {std::max(x0, b.x0), std::max(y0, b.y0), std::min(x1, b.x1), std::min(y1, b.y1)};
-  }
-  bool IsEmpty() const { return !(x1 > x0 && y1 > y0); }
-  static Box2 Infinite() {
-    const double inf = std::numeric_limits<double>::infinity();
-    return {-inf, -inf, inf, inf};
-  }
-};
 
 // Height interval, metres; empty (lo > hi) where the surface is undefined.
 struct HeightRange {
@@ -54,9 +37,9 @@ class Surface {
   // toward a camera that sees p). Walls have |n.z| small; they get façade textures.
   virtual Eigen::Vector3f Albedo(const Eigen::Vector3d& p, const Eigen::Vector3f& n) const = 0;
   // A CONSERVATIVE height interval over `box` (rendering culls tiles with it); empty where undefined.
-  virtual HeightRange RangeOver(const Box2& box) const = 0;
+  virtual HeightRange RangeOver(const Box2d& box) const = 0;
   // Where the surface is defined (Infinite() for the procedural city whose terrain never ends).
-  virtual Box2 Extent() const = 0;
+  virtual Box2d Extent() const = 0;
   // Height interval of the whole scene around the area (footprints use it).
   virtual HeightRange GlobalRange() const = 0;
   // Short description for logs and metadata ("city: 212 buildings, 340 trees").

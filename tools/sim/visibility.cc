@@ -24,18 +24,18 @@ bool SeesPoint(const DepthMap& depth, const PinholeCamera& cam, const Rigid3d& c
   return false;
 }
 
-double EvalCellSize(double requested_m, const Box2& area) {
+double EvalCellSize(double requested_m, const Box2d& area) {
   if (requested_m > 0.0) return requested_m;
   double cell = 1.0;
-  const double side = std::min(area.width(), area.height());
+  const double side = std::min(area.Width(), area.Height());
   while (cell > 0.25 && side / cell < 100.0) cell *= 0.5;
   return cell;
 }
 
-CoverageCounter::CoverageCounter(const Surface& surface, const Box2& area, double cell_m)
+CoverageCounter::CoverageCounter(const Surface& surface, const Box2d& area, double cell_m)
     : area_(area), cell_(cell_m) {
-  width_ = std::max(1, static_cast<int>(std::ceil(area.width() / cell_ - 1e-9)));
-  height_ = std::max(1, static_cast<int>(std::ceil(area.height() / cell_ - 1e-9)));
+  width_ = std::max(1, static_cast<int>(std::ceil(area.Width() / cell_ - 1e-9)));
+  height_ = std::max(1, static_cast<int>(std::ceil(area.Height() / cell_ - 1e-9)));
   const size_t n = static_cast<size_t>(width_) * height_;
   heights_.resize(n);
   counts_.assign(n, 0);
@@ -43,7 +43,7 @@ CoverageCounter::CoverageCounter(const Surface& surface, const Box2& area, doubl
 #pragma omp parallel for schedule(dynamic, 16)
   for (int row = 0; row < height_; ++row) {
     for (int col = 0; col < width_; ++col) {
-      const double x = area_.x0 + (col + 0.5) * cell_, y = area_.y1 - (row + 0.5) * cell_;
+      const double x = area_.min.x() + (col + 0.5) * cell_, y = area_.max.y() - (row + 0.5) * cell_;
       const double z = surface.Height(x, y);
       heights_[static_cast<size_t>(row) * width_ + col] =
           std::isfinite(z) ? static_cast<float>(z - base_z_) : std::numeric_limits<float>::quiet_NaN();
@@ -57,7 +57,7 @@ void CoverageCounter::AddView(const DepthMap& depth, const PinholeCamera& cam, c
     for (int col = 0; col < width_; ++col) {
       const size_t i = static_cast<size_t>(row) * width_ + col;
       if (std::isnan(heights_[i]) || counts_[i] == 255) continue;
-      const Eigen::Vector3d p(area_.x0 + (col + 0.5) * cell_, area_.y1 - (row + 0.5) * cell_, base_z_ + heights_[i]);
+      const Eigen::Vector3d p(area_.min.x() + (col + 0.5) * cell_, area_.max.y() - (row + 0.5) * cell_, base_z_ + heights_[i]);
       if (SeesPoint(depth, cam, cam_from_world, p)) ++counts_[i];
     }
   }
@@ -65,8 +65,8 @@ void CoverageCounter::AddView(const DepthMap& depth, const PinholeCamera& cam, c
 
 GeoMask CoverageCounter::Mask(int min_views) const {
   GeoMask mask;
-  mask.origin_x = area_.x0;
-  mask.origin_y = area_.y1;
+  mask.origin_x = area_.min.x();
+  mask.origin_y = area_.max.y();
   mask.cell_size_m = cell_;
   mask.width = width_;
   mask.height = height_;

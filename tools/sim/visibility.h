@@ -23,7 +23,7 @@ bool SeesPoint(const DepthMap& true_depth, const PinholeCamera& depth_camera, co
 // centre; cells seen by >= min_views are inside.
 class CoverageCounter {
  public:
-  CoverageCounter(const Surface& surface, const Box2& area, double cell_m);
+  CoverageCounter(const Surface& surface, const Box2d& area, double cell_m);
   void AddView(const DepthMap& true_depth, const PinholeCamera& depth_camera, const Rigid3d& true_cam_from_world);
   GeoMask Mask(int min_views) const;
   // Fraction of cells (with a defined surface) seen by >= min_views.
@@ -33,7 +33,7 @@ class CoverageCounter {
   uint8_t count(int row, int col) const { return counts_[static_cast<size_t>(row) * width_ + col]; }
 
  private:
-  Box2 area_;
+  Box2d area_;
   double cell_;
   int width_ = 0, height_ = 0;
   std::vector<float> heights_;  // relative to base_z_, NaN where undefined
@@ -42,6 +42,6 @@ class CoverageCounter {
 };
 
 // Eval-mask cell: explicit, else 1 m halved while the shorter area side has fewer than 100 cells (>= 0.25 m).
-double EvalCellSize(double requested_m, const Box2& area);
+double EvalCellSize(double requested_m, const Box2d& area);
 
 }  // namespace sacfuse::sim
