@@ -1,14 +1,14 @@
-#include "tools/cli/eval_runner.h"
+#include "eval/eval_runner.h"
 
 #include <cstdio>
 
 #include <spdlog/spdlog.h>
 
-#include "tools/eval/eval.h"
-#include "tools/eval/eval_options.h"
-#include "tools/eval/eval_report_json.h"
+#include "eval/eval.h"
+#include "eval/eval_options.h"
+#include "eval/eval_report_json.h"
 
-namespace sacfuse::cli {
+namespace sacfuse {
 
 EvalRequest EvalRequestFromConfig(const JobConfig& config, const std::string& result_las,
                                   const std::string& json_path) {
@@ -54,4 +54,4 @@ EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out) {
   return report;
 }
 
-}  // namespace sacfuse::cli
+}  // namespace sacfuse

@@ -1,4 +1,4 @@
-#include "tools/eval/robust_icp.h"
+#include "eval/robust_icp.h"
 
 #include <algorithm>
 #include <cmath>

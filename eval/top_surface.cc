@@ -1,4 +1,4 @@
-#include "tools/eval/top_surface.h"
+#include "eval/top_surface.h"
 
 #include <algorithm>
 #include <cmath>

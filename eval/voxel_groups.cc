@@ -1,4 +1,4 @@
-#include "tools/eval/voxel_groups.h"
+#include "eval/voxel_groups.h"
 
 #include <algorithm>
 #include <cmath>

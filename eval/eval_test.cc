@@ -1,11 +1,11 @@
-#include "tools/eval/eval.h"
+#include "eval/eval.h"
 
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "core/error.h"
-#include "tools/eval/eval_test_scene.h"
+#include "eval/eval_test_scene.h"
 
 namespace sacfuse {
 namespace {

@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "io/geo_mask_io.h"
 #include "io/las_reader.h"
-#include "tools/eval/eval.h"
+#include "eval/eval.h"
 
 namespace sacfuse {
 namespace {

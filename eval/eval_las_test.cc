@@ -8,8 +8,8 @@
 #include "io/las_reader.h"
 #include "io/las_writer.h"
 #include "tests/support/test_support.h"
-#include "tools/eval/eval.h"
-#include "tools/eval/eval_test_scene.h"
+#include "eval/eval.h"
+#include "eval/eval_test_scene.h"
 
 namespace sacfuse {
 namespace {

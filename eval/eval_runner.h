@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "config/job_config.h"
-#include "tools/eval/eval.h"
+#include "eval/eval.h"
 
-namespace sacfuse::cli {
+namespace sacfuse {
 
 struct EvalRequest {
   std::string result_las;
@@ -31,4 +31,4 @@ EvalRequest EvalRequestFromConfig(const JobConfig& config, const std::string& re
 // input.
 EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out);
 
-}  // namespace sacfuse::cli
+}  // namespace sacfuse

@@ -1,4 +1,4 @@
-#include "tools/eval/eval_options.h"
+#include "eval/eval_options.h"
 
 #include <gtest/gtest.h>
 

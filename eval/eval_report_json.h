@@ -3,7 +3,7 @@
 // in metres; the alignment is a row-major 4 x 4 array of rows; histogram keys are the source IDs as strings.
 #include <string>
 
-#include "tools/eval/eval.h"
+#include "eval/eval.h"
 
 namespace sacfuse {
 

@@ -17,8 +17,8 @@
 
 #include <Eigen/Core>
 
-#include "tools/eval/eval_options.h"
-#include "tools/eval/point_index.h"
+#include "eval/eval_options.h"
+#include "eval/point_index.h"
 
 namespace sacfuse {
 

@@ -1,4 +1,4 @@
-#include "tools/eval/eval_report_json.h"
+#include "eval/eval_report_json.h"
 
 #include <fstream>
 #include <sstream>

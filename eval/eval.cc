@@ -1,4 +1,4 @@
-#include "tools/eval/eval.h"
+#include "eval/eval.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,10 +8,10 @@
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
-#include "tools/eval/point_index.h"
-#include "tools/eval/robust_icp.h"
-#include "tools/eval/top_surface.h"
-#include "tools/eval/voxel_groups.h"
+#include "eval/point_index.h"
+#include "eval/robust_icp.h"
+#include "eval/top_surface.h"
+#include "eval/voxel_groups.h"
 
 namespace sacfuse {
 namespace {

@@ -1,12 +1,12 @@
-#include "tools/eval/robust_icp.h"
+#include "eval/robust_icp.h"
 
 #include <random>
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
-#include "tools/eval/eval.h"
-#include "tools/eval/eval_test_scene.h"
+#include "eval/eval.h"
+#include "eval/eval_test_scene.h"
 
 namespace sacfuse {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/eval/point_index.h"
+#include "eval/point_index.h"
 
 #include <cmath>
 #include <limits>

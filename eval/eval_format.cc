@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-#include "tools/eval/eval.h"
+#include "eval/eval.h"
 
 namespace sacfuse {
 namespace {

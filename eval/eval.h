@@ -40,7 +40,7 @@
 #include <Eigen/Core>
 
 #include "core/geo_mask.h"
-#include "tools/eval/eval_options.h"
+#include "eval/eval_options.h"
 
 namespace sacfuse {
 
