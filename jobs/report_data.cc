@@ -1,4 +1,3 @@
-#include "jobs/output_layout.h"
 #include "jobs/report_data.h"
 
 #include <chrono>
@@ -10,10 +9,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/output_layout.h"
 #include "config/result_settings.h"
 #include "io/las_reader.h"
-#include "jobs/tile_marker.h"
-#include "jobs/tiled_run.h"
+#include "tiles/tile_manifest.h"
+#include "tiles/tile_marker.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -129,24 +129,24 @@ ReportEval ParseEvalJson(const std::string& text) {
 std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::string>* warnings) {
   std::vector<ReportTile> tiles;
   const std::string tiles_dir = TilesDir(given);
-  std::string text;
-  if (!ReadText(fs::path(tiles_dir) / "manifest.json", &text)) {
-    warnings->push_back("tiled run without " + (fs::path(tiles_dir) / "manifest.json").string() + ": no tile map");
+  std::optional<TileManifest> manifest;
+  try {
+    manifest = TileManifest::Read(tiles_dir);
+  } catch (const std::exception& e) {
+    warnings->push_back(std::string(e.what()) + ": no tile map");
     return tiles;
   }
-  nlohmann::json manifest;
-  try {
-    manifest = nlohmann::json::parse(text);
-  } catch (const std::exception& e) {
-    warnings->push_back(tiles_dir + "/manifest.json unreadable (" + e.what() + "): no tile map");
+  if (!manifest) {
+    warnings->push_back("tiled run without " + TileManifest::Path(tiles_dir) + ": no tile map");
     return tiles;
   }
   JobConfig config = given;
-  if (config.tiling.tile_size_m <= 0) config.tiling.tile_size_m = manifest.value("tile_size_m", 0.0);
+  if (config.tiling.tile_size_m <= 0) config.tiling.tile_size_m = manifest->tile_size_m;
   const std::string hash = ResultSettingsHash(config);
   // Core bounds and estimates from plan.json.
   std::map<std::string, std::pair<Bounds2d, uint64_t>> planned;
-  if (ReadText(fs::path(config.output.dir) / "plan.json", &text)) {
+  std::string text;
+  if (ReadText(PlanJsonPath(config), &text)) {
     try {
       const nlohmann::json plan = nlohmann::json::parse(text);
       for (const auto& t : plan.at("tiles")) {
@@ -162,9 +162,9 @@ std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::str
     }
   }
   try {
-    for (const auto& id_json : manifest.at("tiles")) {
+    for (const std::string& id : manifest->tiles) {
       ReportTile t;
-      t.id = id_json.get<std::string>();
+      t.id = id;
       if (!ParseTileId(t.id, &t.ix, &t.iy)) continue;
       if (const auto it = planned.find(t.id); it != planned.end()) {
         t.has_core = true;
@@ -190,7 +190,7 @@ std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::str
       tiles.push_back(t);
     }
   } catch (const std::exception& e) {
-    warnings->push_back(tiles_dir + "/manifest.json: unexpected content (" + e.what() + ")");
+    warnings->push_back(tiles_dir + ": tile states unreadable (" + e.what() + ")");
   }
   return tiles;
 }
@@ -200,7 +200,6 @@ ReportData GatherReportData(const JobConfig& config) {
   d.output_dir = config.output.dir;
   d.generated_at = Now();
   d.reference_path = config.evaluation.reference;
-  const fs::path dir(config.output.dir);
   std::string text;
   if (ReadText(RunReportPath(config), &text)) {
     try {
@@ -230,7 +229,7 @@ ReportData GatherReportData(const JobConfig& config) {
       d.warnings.push_back(fs::path(d.cloud.path).filename().string() + " unreadable: " + e.what());
     }
   }
-  const fs::path eval_path = dir / "eval.json";
+  const fs::path eval_path = EvalJsonPath(config);
   if (fs::exists(eval_path, ec)) {
     const bool stale =
         d.cloud.exists && fs::last_write_time(eval_path, ec) < fs::last_write_time(d.cloud.path, ec);
@@ -245,7 +244,7 @@ ReportData GatherReportData(const JobConfig& config) {
     }
   }
   d.tile_size_m = d.run.present ? d.run.tile_size_m : 0.0;
-  d.tiled = d.run.present ? d.run.tile_size_m > 0 : fs::exists(dir / "tiles" / "manifest.json", ec);
+  d.tiled = d.run.present ? d.run.tile_size_m > 0 : fs::exists(TileManifest::Path(TilesDir(config)), ec);
   if (d.tiled) d.tiles = GatherTiles(config, &d.warnings);
   return d;
 }

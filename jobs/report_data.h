@@ -3,7 +3,7 @@
 // of the run, so `sacfuse report` can rewrite the report of any finished or failed run):
 //   run_report.json (points in/out per view, times, memory, SAC counts), eval.json (scores, used only when it is
 //   not older than fused.las, so an old score never describes a new cloud), tiles/manifest.json, plan.json and
-//   the tile markers (jobs/tile_marker.h), sacfuse.effective.yaml, and fused.las's header.
+//   the tile markers (tiles/tile_marker.h), sacfuse.effective.yaml, and fused.las's header.
 // Missing or unreadable files do not throw: the part they feed is left out and a warning names the file.
 #include <cstdint>
 #include <string>
@@ -49,7 +49,7 @@ struct ReportRun {
 };
 
 struct ReportCloud {
-  std::string path;         // the fused cloud (jobs/output_layout.h)
+  std::string path;         // the fused cloud (config/output_layout.h)
   std::string name;         // its file name: fused.laz or fused.las
   bool exists = false;
   uint64_t points = 0;      // header count

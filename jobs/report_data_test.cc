@@ -11,8 +11,8 @@
 
 #include "config/result_settings.h"
 #include "io/las_writer.h"
-#include "jobs/tile_marker.h"
-#include "jobs/tiled_run.h"
+#include "tiles/tile_marker.h"
+#include "config/output_layout.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {

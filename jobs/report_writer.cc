@@ -9,6 +9,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "config/output_layout.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/las_reader.h"
@@ -19,10 +20,8 @@
 #include "jobs/report_input_counts.h"
 #include "jobs/report_map_figure.h"
 #include "jobs/report_png.h"
-#include "jobs/resource_usage.h"
-#include "jobs/tile_marker.h"
-#include "jobs/superpixel_cache.h"
-#include "jobs/tiled_run.h"
+#include "io/resource_usage.h"
+#include "tiles/tile_marker.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -144,7 +143,7 @@ void WritePage(const ReportData& data, const ReportFigures& figures, const std::
 }  // namespace
 
 std::string ReportDir(const JobConfig& config, const ReportOptions& options) {
-  return options.report_dir.empty() ? (fs::path(config.output.dir) / "report").string() : options.report_dir;
+  return options.report_dir.empty() ? ReportDir(config) : options.report_dir;
 }
 
 ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "config/job_config.h"
+#include "config/output_layout.h"
 #include "jobs/report_figures.h"
 
 namespace sacfuse {
@@ -25,8 +26,8 @@ struct ReportOptions {
   bool before_profile = true;           // read the input's depth windows for the "before" panel
 };
 
-// The report folder of a config and options.
-std::string ReportDir(const JobConfig& config, const ReportOptions& options = {});
+// The report folder of a config and options (ReportDir(config), config/output_layout.h, unless options.report_dir).
+std::string ReportDir(const JobConfig& config, const ReportOptions& options);
 
 // Writes the whole report; returns the figures' description (also in figures.json). A missing fused.las or input
 // leaves the pictures that need them out (said on the page); throws only when the report folder cannot be written.

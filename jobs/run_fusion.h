@@ -58,11 +58,4 @@ using RunProgress = std::function<void(const std::string& stage, size_t done, si
 RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {},
                         const std::vector<std::string>& rerun_tiles = {});
 
-// LAS writer options of a config's output (version, scale, generating software; no offset, no CRS).
-LasWriterOptions MakeLasOptions(const OutputOptions& output);
-// The same plus the CRS records of config `crs` (io/las_crs.h): what every LAS a job writes (tiles, fused.las,
-// merge, union) is written with.
-LasWriterOptions MakeLasOptions(const JobConfig& config);
-
-
 }  // namespace sacfuse

@@ -10,7 +10,7 @@
 #include "config/job_config.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
-#include "jobs/output_layout.h"
+#include "config/output_layout.h"
 #include "jobs/run_fusion.h"
 #include "jobs/run_state.h"
 #include "jobs/report_writer.h"

@@ -1,4 +1,4 @@
-#include "jobs/tile_claim.h"
+#include "tiles/tile_claim.h"
 
 #include <fcntl.h>
 #include <signal.h>

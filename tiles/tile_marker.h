@@ -18,7 +18,7 @@
 #include "core/pixel_window.h"
 #include "core/view.h"
 #include "io/view_identity.h"
-#include "jobs/tile_plan.h"
+#include "tiles/tile_plan.h"
 
 namespace sacfuse {
 

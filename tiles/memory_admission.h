@@ -12,7 +12,8 @@ class MemoryAdmission {
   explicit MemoryAdmission(uint64_t pool_bytes) : pool_(pool_bytes) {}
 
   // Blocks until `bytes` fit next to the current reservations. A request larger than the whole pool is admitted
-  // only when nothing else is reserved (callers refuse such tiles before asking; see TiledRun).
+  // only when nothing else is reserved (callers refuse such tiles before asking: CheckTileFitsBudget,
+  // tiles/tile_worker.h).
   void Acquire(uint64_t bytes);
   void Release(uint64_t bytes);
 

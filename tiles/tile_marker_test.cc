@@ -1,4 +1,4 @@
-#include "jobs/tile_marker.h"
+#include "tiles/tile_marker.h"
 
 #include "io/atomic_file.h"
 

@@ -1,4 +1,4 @@
-#include "jobs/memory_model.h"
+#include "tiles/memory_model.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "jobs/version.h"
+#include "config/version.h"
 
 namespace sacfuse {
 std::string VersionString() { return "sacfuse 0.1.0"; }

@@ -28,7 +28,7 @@ struct PlannedTile {
   Bounds2d core, halo;                 // core is half-open [min, max)
   std::vector<TileViewWindow> views;   // in view order
   uint64_t window_pixels = 0;          // sum over views
-  uint64_t memory_bytes = 0;           // estimate, TileBytes(window_pixels) (jobs/memory_model.h)
+  uint64_t memory_bytes = 0;           // estimate, TileBytes(window_pixels) (tiles/memory_model.h)
 };
 
 struct TilePlan {
@@ -61,9 +61,5 @@ std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const st
 // writers produce the same content). *plan_path receives the file.
 TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, const std::vector<ViewIdentity>& identities,
                         std::string* plan_path = nullptr);
-
-// `sacfuse plan`: validates the config, opens the workspace, resolves an automatic tile size (a block that runs
-// untiled gets the one-tile plan) and returns SharedTilePlan.
-TilePlan PlanJob(const JobConfig& config, std::string* plan_path = nullptr);
 
 }  // namespace sacfuse

@@ -7,7 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "config/job_config.h"
+#include "io/depth_block.h"
 #include "io/las_writer.h"
+#include "io/view_identity.h"
+#include "tiles/tile_plan.h"
 
 namespace sacfuse {
 
@@ -21,5 +25,17 @@ struct MergeResult {
 MergeResult MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
                          const LasWriterOptions& options,
                          const std::function<void(size_t done, size_t total)>& progress = {});
+
+// Streams the done tiles' LAS files, grid order, into `fused_las_path`; `las.offset` must be the plan's shared
+// offset (tiles/tile_manifest.h). Throws Error when a tile with views has no done marker.
+MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
+                          const std::string& fused_las_path,
+                          const std::function<void(const std::string& stage, size_t done, size_t total)>& progress =
+                              {});
+
+// Tiles with views whose done marker does not verify (full checksum, and inputs against `identities`, by view
+// index), grid order.
+std::vector<std::string> MissingTiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                                      const std::vector<ViewIdentity>& identities);
 
 }  // namespace sacfuse

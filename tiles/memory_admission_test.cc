@@ -1,4 +1,4 @@
-#include "jobs/memory_admission.h"
+#include "tiles/memory_admission.h"
 
 #include <atomic>
 #include <chrono>

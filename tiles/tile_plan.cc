@@ -1,4 +1,4 @@
-#include "jobs/tile_plan.h"
+#include "tiles/tile_plan.h"
 
 #include <algorithm>
 #include <cmath>
@@ -8,13 +8,12 @@
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "config/output_layout.h"
 #include "config/result_settings.h"
+#include "config/version.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
-#include "jobs/auto_tiling.h"
-#include "jobs/memory_model.h"
-#include "jobs/open_input.h"
-#include "jobs/version.h"
+#include "tiles/memory_model.h"
 
 namespace sacfuse {
 namespace {
@@ -125,7 +124,7 @@ TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, const 
   TilePlan plan = BuildTilePlan(input, config.tiling);
   const std::string hash = ResultSettingsHash(config);
   const std::string inputs_hash = IdentitiesDigest(identities);
-  const std::string path = (std::filesystem::path(config.output.dir) / "plan.json").string();
+  const std::string path = PlanJsonPath(config);
   const std::string text = TilePlanJson(plan, input, hash, inputs_hash);
   if (plan_path != nullptr) *plan_path = path;
   std::ifstream in(path);
@@ -156,13 +155,6 @@ TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, const 
   spdlog::info("plan: {} tiles ({} x {}), z range [{:.1f}, {:.1f}] m from {}, written to {}", plan.tiles.size(),
                plan.grid.num_x(), plan.grid.num_y(), plan.z_min_m, plan.z_max_m, plan.z_source, path);
   return plan;
-}
-
-TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
-  ValidateJobConfig(given);
-  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan", given.crs);
-  const JobConfig config = ResolveTiling(given, *input);
-  return SharedTilePlan(config, *input, IdentifyBlock(*input).views, plan_path);
 }
 
 }  // namespace sacfuse

@@ -1,4 +1,4 @@
-#include "jobs/resource_usage.h"
+#include "io/resource_usage.h"
 
 #include <sys/resource.h>
 

@@ -1,4 +1,4 @@
-#include "jobs/tile_marker.h"
+#include "tiles/tile_marker.h"
 
 #include <algorithm>
 #include <chrono>
