@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -10,6 +11,7 @@
 #include "config/output_layout.h"
 #include "config/version.h"
 #include "core/error.h"
+#include "eval/eval_runner.h"
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
 #include "io/las_writer.h"
@@ -19,11 +21,11 @@
 #include "jobs/block_view_source.h"
 #include "jobs/fuse_views.h"
 #include "jobs/fusion_methods.h"
+#include "jobs/job_report.h"
 #include "jobs/las_options.h"
 #include "jobs/method_geometry.h"
 #include "jobs/open_input.h"
 #include "jobs/point_sinks.h"
-#include "jobs/report_writer.h"
 #include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
@@ -46,7 +48,7 @@ nlohmann::json FusionStatsJson(const FusionStats& m, bool tiled) {
           {"counters", counters}, {"histograms", histograms}, {"stage_seconds", stages}};
 }
 
-// SAC's counters under the names the HTML report reads (jobs/report_data.h).
+// SAC's counters under the names the HTML report reads (report/report_data.h).
 nlohmann::json SacSectionJson(const FusionStats& f, size_t superpixels_computed) {
   const uint64_t valid_nodes = f.counter("valid_nodes");
   const std::vector<uint64_t>* sizes = f.histogram("netlet_size");
@@ -204,6 +206,23 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   for (size_t i = 0; i < views.size(); ++i) summary->views[i].output_points = counting.count(views[i].index);
 }
 
+// Scores fused.las when evaluation.reference is set (DIR/eval.json; the table into summary->eval_text), then
+// writes the HTML report once, with the scores. A scoring error is rethrown after the report (without scores).
+void ScoreAndReport(const JobConfig& config, RunSummary* summary) {
+  const ReportOptions report = JobReportOptions(config);
+  if (!config.evaluation.reference.empty()) {
+    try {
+      std::ostringstream table;
+      RunEvaluation(EvalRequestFromConfig(config, summary->las_path, EvalJsonPath(config)), table);
+      summary->eval_text = table.str();
+    } catch (...) {
+      WriteHtmlReportOrWarn(config, report);
+      throw;
+    }
+  }
+  WriteHtmlReportOrWarn(config, report);  // DIR/report/index.html; a failure is only a warning
+}
+
 }  // namespace
 
 RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
@@ -261,7 +280,7 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.peak_rss_mib = PeakRssMiB();
   if (!summary.failed_tiles.empty()) return summary;  // the previous run's outputs stay (jobs/run_state.h)
   WriteRunReport(summary, config);
-  WriteHtmlReportOrWarn(config);  // DIR/report/index.html; a failure is only a warning
+  ScoreAndReport(config, &summary);
   spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
                summary.wall_seconds, summary.peak_rss_mib);
   return summary;
