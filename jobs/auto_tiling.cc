@@ -1,19 +1,18 @@
 #include "jobs/auto_tiling.h"
 
 #include <algorithm>
-#include <filesystem>
-#include <fstream>
 #include <optional>
 #include <thread>
 #include <vector>
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "config/output_layout.h"
 #include "core/error.h"
-#include "jobs/memory_model.h"
+#include "tiles/memory_model.h"
 #include "jobs/method_memory.h"
-#include "jobs/tile_plan.h"
+#include "tiles/tile_manifest.h"
+#include "tiles/tile_plan.h"
 
 namespace sacfuse {
 namespace {
@@ -26,12 +25,9 @@ double GiB(uint64_t bytes) { return static_cast<double>(bytes) / kGiB; }
 
 // The tile size recorded by a tiled run already started in this output folder (0 = none).
 double TileSizeOfRunInProgress(const JobConfig& config) {
-  const auto path = std::filesystem::path(config.output.dir) / "tiles" / "manifest.json";
-  std::ifstream in(path);
-  if (!in) return 0.0;
   try {
-    const nlohmann::json j = nlohmann::json::parse(in);
-    return j.value("tile_size_m", 0.0);
+    const std::optional<TileManifest> manifest = TileManifest::Read(TilesDir(config));
+    return manifest ? manifest->tile_size_m : 0.0;
   } catch (const std::exception&) {
     return 0.0;
   }

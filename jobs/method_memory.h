@@ -1,5 +1,5 @@
 #pragma once
-// Memory of the comparison methods beyond what jobs/memory_model.h estimates for SAC per depth pixel (20 B/px in
+// Memory of the comparison methods beyond what tiles/memory_model.h estimates for SAC per depth pixel (20 B/px in
 // a tile; that covers depth, colours, the per-pixel methods' marks and the computed normals of
 // disparity_normal): tsdf also holds its voxel grid, whose size follows the surface seen (about one band of
 // 2 truncation / voxel voxels per voxel column), measured at ~50 B per depth pixel with voxel 1 GSD and
@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "config/job_config.h"
-#include "jobs/tile_plan.h"
+#include "tiles/tile_plan.h"
 
 namespace sacfuse {
 

@@ -1,35 +1,37 @@
-#include "jobs/output_layout.h"
 #include "jobs/run_fusion.h"
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <sstream>
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
 
+#include "config/output_layout.h"
+#include "config/version.h"
 #include "core/error.h"
+#include "eval/eval_runner.h"
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
-#include "jobs/open_input.h"
-#include "io/las_crs.h"
 #include "io/las_writer.h"
+#include "io/resource_usage.h"
 #include "io/view_identity.h"
 #include "jobs/auto_tiling.h"
-#include "jobs/memory_model.h"
 #include "jobs/block_view_source.h"
 #include "jobs/fuse_views.h"
 #include "jobs/fusion_methods.h"
+#include "jobs/job_report.h"
+#include "jobs/las_options.h"
 #include "jobs/method_geometry.h"
+#include "jobs/open_input.h"
 #include "jobs/point_sinks.h"
-#include "jobs/superpixel_cache.h"
-#include "jobs/tile_plan.h"
-#include "jobs/report_writer.h"
-#include "jobs/resource_usage.h"
 #include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
-#include "jobs/version.h"
+#include "tiles/memory_model.h"
+#include "tiles/tile_manifest.h"
+#include "tiles/tile_plan.h"
 
 namespace sacfuse {
 namespace {
@@ -46,7 +48,7 @@ nlohmann::json FusionStatsJson(const FusionStats& m, bool tiled) {
           {"counters", counters}, {"histograms", histograms}, {"stage_seconds", stages}};
 }
 
-// SAC's counters under the names the HTML report reads (jobs/report_data.h).
+// SAC's counters under the names the HTML report reads (report/report_data.h).
 nlohmann::json SacSectionJson(const FusionStats& f, size_t superpixels_computed) {
   const uint64_t valid_nodes = f.counter("valid_nodes");
   const std::vector<uint64_t>* sizes = f.histogram("netlet_size");
@@ -151,8 +153,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
                config.fusion.method, plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
   const TiledRunOutcome tiled =
-      RunTiledJob(config, input, plan, identity.views, rerun_tiles, MakeLasOptions(config), summary->las_path,
-                  progress);
+      RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path, progress);
   SetFusionSummary(tiled.stats, summary);
   summary->superpixels_computed = tiled.superpixels_computed;
   summary->superpixel_seconds = tiled.superpixel_seconds;
@@ -189,14 +190,15 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   }
   LasWriter writer(summary->las_path, MakeLasOptions(config));
   CountingSink counting(writer);
-  const BlockViewSource source(input, config.fusion.sac.superpixels, SuperpixelCacheDir(config), progress);
+  const std::string cache_dir = SuperpixelCacheDir(config);
+  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress);
   const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, counting);
   summary->superpixels_computed = fused.superpixels_computed;
   summary->superpixel_seconds = fused.load_seconds;
   spdlog::info("{} views loaded in {:.1f} s{}", views.size(), fused.load_seconds,
                method->needs().superpixels
                    ? fmt::format(" (superpixels: {} computed, {} reused from {})", fused.superpixels_computed,
-                                 views.size() - fused.superpixels_computed, SuperpixelCacheDir(config))
+                                 views.size() - fused.superpixels_computed, cache_dir)
                    : std::string());
   SetFusionSummary(fused.stats, summary);
   writer.Close();
@@ -204,23 +206,24 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   for (size_t i = 0; i < views.size(); ++i) summary->views[i].output_points = counting.count(views[i].index);
 }
 
+// Scores fused.las when evaluation.reference is set (DIR/eval.json; the table into summary->eval_text), then
+// writes the HTML report once, with the scores. A scoring error is rethrown after the report (without scores).
+void ScoreAndReport(const JobConfig& config, RunSummary* summary) {
+  const ReportOptions report = JobReportOptions(config);
+  if (!config.evaluation.reference.empty()) {
+    try {
+      std::ostringstream table;
+      RunEvaluation(EvalRequestFromConfig(config, summary->las_path, EvalJsonPath(config)), table);
+      summary->eval_text = table.str();
+    } catch (...) {
+      WriteHtmlReportOrWarn(config, report);
+      throw;
+    }
+  }
+  WriteHtmlReportOrWarn(config, report);  // DIR/report/index.html; a failure is only a warning
+}
+
 }  // namespace
-
-LasWriterOptions MakeLasOptions(const OutputOptions& output) {
-  LasWriterOptions o;
-  o.version_minor = output.las_version == "1.2" ? 2 : 4;
-  o.scale_m = output.scale_m;
-  o.compressed = output.format == "laz";
-  o.generating_software = VersionString();
-  return o;
-}
-
-LasWriterOptions MakeLasOptions(const JobConfig& config) {
-  LasWriterOptions o = MakeLasOptions(config.output);
-  AddCrsToLasOptions(ParseProjectCrs(config.crs), &o);
-  return o;
-}
-
 
 RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
                         const std::vector<std::string>& rerun_tiles) {
@@ -277,7 +280,7 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.peak_rss_mib = PeakRssMiB();
   if (!summary.failed_tiles.empty()) return summary;  // the previous run's outputs stay (jobs/run_state.h)
   WriteRunReport(summary, config);
-  WriteHtmlReportOrWarn(config);  // DIR/report/index.html; a failure is only a warning
+  ScoreAndReport(config, &summary);
   spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
                summary.wall_seconds, summary.peak_rss_mib);
   return summary;

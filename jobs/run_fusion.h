@@ -1,5 +1,7 @@
 #pragma once
-// `sacfuse run`: read the configured input, fuse, write DIR/fused.las, the effective config and a run report.
+// `sacfuse run`: read the configured input, fuse, write DIR/fused.las, the effective config and run_report.json,
+// score the cloud when evaluation.reference is set (DIR/eval.json, eval/eval_runner.h), then write the HTML report
+// once (report/report_writer.h).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -44,25 +46,20 @@ struct RunSummary {
   double superpixel_seconds = 0.0;  // the superpixel (and colour cache) pass; untiled: all loading
   double tiles_seconds = 0.0;       // tiled: the tile stage
   double merge_seconds = 0.0;       // tiled: merging the tiles into fused.las
+  std::string eval_text;            // evaluation.reference set: the score table and F1 lines (eval/eval_runner.h)
 };
 
 // Called as work proceeds: stage name, units done, units total.
 using RunProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
 // Runs one job. Throws InputError/ConfigError/Error with context; never leaves a partial fused.las, and replaces
-// fused.las, run_report.json and the HTML report only when it has the new ones (a run with failed tiles writes
-// none of them). Deletes the temporary files of killed runs first (jobs/run_state.h).
+// fused.las, run_report.json, eval.json and the HTML report only when it has the new ones (a run with failed tiles
+// writes none of them; a scoring error is thrown after the report is written without scores). Deletes the
+// temporary files of killed runs first (jobs/run_state.h).
 // Tiled runs resume (jobs/tiled_run.h): `rerun_tiles` names tiles to recompute even when done (ConfigError
 // naming any id that is not a tile with views, or when the run is not tiled); a tile that fails is listed in
 // failed_tiles and the job returns without merging.
 RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {},
                         const std::vector<std::string>& rerun_tiles = {});
-
-// LAS writer options of a config's output (version, scale, generating software; no offset, no CRS).
-LasWriterOptions MakeLasOptions(const OutputOptions& output);
-// The same plus the CRS records of config `crs` (io/las_crs.h): what every LAS a job writes (tiles, fused.las,
-// merge, union) is written with.
-LasWriterOptions MakeLasOptions(const JobConfig& config);
-
 
 }  // namespace sacfuse

@@ -12,10 +12,8 @@
 #include <spdlog/spdlog.h>
 
 #include "io/atomic_file.h"
-#include "jobs/output_layout.h"
-#include "jobs/report_writer.h"
-#include "jobs/superpixel_cache.h"
-#include "jobs/tile_claim.h"
+#include "config/output_layout.h"
+#include "tiles/tile_claim.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;

@@ -77,16 +77,6 @@ CacheCheck CheckCache(const std::string& path, const ViewIdentity& inputs, unsig
 
 }  // namespace
 
-std::string SuperpixelCacheDir(const JobConfig& config) {
-  return config.fusion.superpixel_cache_dir.empty()
-             ? (fs::path(config.output.dir) / "superpixels").string()
-             : config.fusion.superpixel_cache_dir;
-}
-
-std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name) {
-  return (fs::path(cache_dir) / (image_name + ".spx")).string();
-}
-
 CacheCheck CheckSuperpixelCache(const std::string& cache_dir, const View& view, int width, int height,
                                 const SuperpixelOptions& options, const ViewIdentity& inputs) {
   const std::string path = SuperpixelCachePath(cache_dir, view.name);
@@ -127,10 +117,6 @@ SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View&
   WriteCacheRecord(path, inputs);
   if (computed != nullptr) *computed = true;
   return map;
-}
-
-std::string ColourCachePath(const std::string& cache_dir, const std::string& image_name) {
-  return (fs::path(cache_dir) / (image_name + ".rgb")).string();
 }
 
 CacheCheck CheckColourCache(const std::string& cache_dir, const View& view, int width, int height,

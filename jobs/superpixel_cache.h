@@ -8,6 +8,7 @@
 #include <string>
 
 #include "config/job_config.h"
+#include "config/output_layout.h"
 #include "core/raster.h"
 #include "core/superpixels.h"
 #include "core/view.h"
@@ -15,11 +16,7 @@
 
 namespace sacfuse {
 
-// The superpixel (and colour) cache folder of a job: fusion.superpixel_cache_dir, or <output.dir>/superpixels.
-std::string SuperpixelCacheDir(const JobConfig& config);
-
-// Cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.spx").
-std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name);
+// The cache folder and file names: SuperpixelCacheDir, SuperpixelCachePath, ColourCachePath (config/output_layout.h).
 
 // Whether a cache is current, and why not.
 struct CacheCheck {
@@ -38,10 +35,6 @@ CacheCheck CheckSuperpixelCache(const std::string& cache_dir, const View& view, 
 SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view, const RgbImage& image,
                                        const DepthMap& depth, const SuperpixelOptions& options,
                                        const ViewIdentity& inputs, bool* computed = nullptr);
-
-// Colour cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.rgb"): the image resampled to
-// the depth raster (io/colour_raster_io.h), written by the superpixel pass so tiles read colour windows.
-std::string ColourCachePath(const std::string& cache_dir, const std::string& image_name);
 
 // The colour cache of `view` against the raster size and the view's image identity.
 CacheCheck CheckColourCache(const std::string& cache_dir, const View& view, int width, int height,

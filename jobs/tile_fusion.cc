@@ -6,6 +6,7 @@
 #include "io/colour_raster_io.h"
 #include "jobs/fusion_methods.h"
 #include "jobs/method_geometry.h"
+#include "jobs/method_memory.h"
 #include "jobs/superpixel_cache.h"
 #include "jobs/tile_view_source.h"
 
@@ -74,6 +75,33 @@ FusedViews FuseTile(const DepthBlock& input, const TilePlan& plan, const Planned
   scope.owns = [&grid, index](const Eigen::Vector3d& p) { return grid.TileOf(p.x(), p.y()) == index; };
   const TileViewSource source(input, plan, tile, superpixel_cache_dir, cluster_cache);
   return FuseViews(*method, source, &geometry, std::move(scope), sink);
+}
+
+MethodTileFuser::MethodTileFuser(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                                 const std::vector<ViewIdentity>& identities, ClusterTableCache* cluster_cache)
+    : config_(config),
+      input_(input),
+      plan_(plan),
+      identities_(identities),
+      cluster_cache_(cluster_cache),
+      fusion_(WithTsdfMemoryLimit(config)),
+      cache_dir_(SuperpixelCacheDir(config)) {}
+
+uint64_t MethodTileFuser::TileBytes(const PlannedTile& tile) const { return MethodTileBytes(tile, config_.fusion); }
+
+void MethodTileFuser::PrepareTile(const PlannedTile& tile) {
+  const bool superpixels = MakeFusionMethod(config_.fusion)->needs().superpixels;
+  EnsureTiledSuperpixels(input_, plan_, config_.fusion.sac, cache_dir_, identities_, {}, &tile, superpixels);
+}
+
+TileFused MethodTileFuser::Fuse(const PlannedTile& tile, PointSink& sink) {
+  FusedViews fused = FuseTile(input_, plan_, tile, fusion_, cache_dir_, sink, cluster_cache_);
+  TileFused out;
+  out.stats = std::move(fused.stats);
+  out.view_ids = std::move(fused.view_ids);
+  out.points_written = fused.points_written;
+  out.points_not_owned = fused.points_not_owned;
+  return out;
 }
 
 }  // namespace sacfuse

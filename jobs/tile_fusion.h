@@ -2,7 +2,8 @@
 // Any fusion.method tile by tile (tiling.tile_size_m > 0): each tile loads only the windows of its views that its
 // halo box needs (jobs/tile_view_source.h) and runs through FuseViews (jobs/fuse_views.h) like an untiled run,
 // keeping only the points of its half-open core, so the tiles stitch into one cloud without seams or duplicates.
-// jobs/tiled_run.h runs the tiles, each into its own LAS file.
+// MethodTileFuser is that step as the tile worker's injected TileFuser (tiles/tile_fuser.h); jobs/tiled_run.h and
+// jobs/tile_queue.h run the tiles, each into its own LAS file.
 #include <string>
 
 #include "config/job_config.h"
@@ -13,7 +14,8 @@
 #include "io/view_identity.h"
 #include "jobs/cluster_table_cache.h"
 #include "jobs/fuse_views.h"
-#include "jobs/tile_plan.h"
+#include "tiles/tile_fuser.h"
+#include "tiles/tile_plan.h"
 
 namespace sacfuse {
 
@@ -33,5 +35,26 @@ size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, con
 FusedViews FuseTile(const DepthBlock& input, const TilePlan& plan, const PlannedTile& tile,
                     const FusionOptions& fusion, const std::string& superpixel_cache_dir, PointSink& sink,
                     ClusterTableCache* cluster_cache = nullptr);
+
+// The fusion step of a job's tiles (fusion.method with the job's TSDF memory limit, superpixel caches and
+// neighbour views), for the tile worker.
+class MethodTileFuser : public TileFuser {
+ public:
+  // `cluster_cache` (may be null) is shared by the tiles; every reference must outlive the fuser.
+  MethodTileFuser(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                  const std::vector<ViewIdentity>& identities, ClusterTableCache* cluster_cache = nullptr);
+  uint64_t TileBytes(const PlannedTile& tile) const override;  // MethodTileBytes (jobs/method_memory.h)
+  void PrepareTile(const PlannedTile& tile) override;          // EnsureTiledSuperpixels of the tile's views
+  TileFused Fuse(const PlannedTile& tile, PointSink& sink) override;
+
+ private:
+  const JobConfig& config_;
+  const DepthBlock& input_;
+  const TilePlan& plan_;
+  const std::vector<ViewIdentity>& identities_;
+  ClusterTableCache* cluster_cache_;
+  const FusionOptions fusion_;  // WithTsdfMemoryLimit(config)
+  const std::string cache_dir_;  // SuperpixelCacheDir(config)
+};
 
 }  // namespace sacfuse

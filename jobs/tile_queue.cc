@@ -2,20 +2,16 @@
 
 #include <filesystem>
 
-#include <spdlog/spdlog.h>
-
+#include "config/output_layout.h"
 #include "config/result_settings.h"
 #include "core/error.h"
-#include "jobs/open_input.h"
 #include "jobs/auto_tiling.h"
-#include "jobs/fusion_methods.h"
-#include "jobs/run_fusion.h"
+#include "jobs/las_options.h"
+#include "jobs/open_input.h"
 #include "jobs/thread_limit.h"
-#include "jobs/tile_claim.h"
-#include "jobs/tile_marker.h"
-#include "jobs/superpixel_cache.h"
-#include "jobs/tiled_run.h"
 #include "jobs/tile_fusion.h"
+#include "tiles/tile_manifest.h"
+#include "tiles/tile_marker.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -33,20 +29,14 @@ std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* r
   return input;
 }
 
-// The merged cloud's options (output.format); tiles are written with compressed = false (intermediate files).
-LasWriterOptions FusedCloudOptions(const JobConfig& config, const TilePlan& plan) {
-  LasWriterOptions las = MakeLasOptions(config);
-  las.offset = SharedTileOffset(plan);
-  return las;
-}
-
-LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
-  LasWriterOptions las = FusedCloudOptions(config, plan);
-  las.compressed = false;
-  return las;
-}
-
 }  // namespace
+
+TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
+  ValidateJobConfig(given);
+  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan", given.crs);
+  const JobConfig config = ResolveTiling(given, *input);
+  return SharedTilePlan(config, *input, IdentifyBlock(*input).views, plan_path);
+}
 
 TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   JobConfig config;
@@ -67,36 +57,8 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   const TileInputs inputs = TileInputsOf(*tile, input->views(), identity.views);
   if (VerifyTileDone(job.tiles_dir, id, job.hash, true, &inputs).done) return {};
   RecordTiledRunState(config, plan, job.las, 1);
-  return WorkOnTile(job, *tile, /*forced=*/false, nullptr, nullptr);
-}
-
-std::vector<std::string> MissingTiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
-                                      const std::vector<ViewIdentity>& identities) {
-  const std::string tiles_dir = TilesDir(config);
-  const std::string hash = ResultSettingsHash(config);
-  std::vector<std::string> missing;
-  for (const PlannedTile& tile : plan.tiles) {
-    if (tile.views.empty()) continue;
-    const TileInputs inputs = TileInputsOf(tile, input.views(), identities);
-    if (!VerifyTileDone(tiles_dir, tile.id, hash, true, &inputs).done) missing.push_back(tile.id);
-  }
-  return missing;
-}
-
-MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
-                          const std::string& fused_las_path, const SacProgress& progress) {
-  const std::string tiles_dir = TilesDir(config);
-  std::vector<std::string> merge_order;  // LAS files of the tiles that have points, grid order
-  for (const std::string& id : TileIdsWithViews(plan)) {
-    const auto marker = ReadTileDoneMarker(tiles_dir, id);
-    if (!marker) throw Error(TileDonePath(tiles_dir, id) + ": done marker vanished before the merge");
-    if (marker->points > 0) merge_order.push_back(TileLasPath(tiles_dir, id));
-  }
-  const MergeResult merged = MergeTileLas(merge_order, fused_las_path, las, [&](size_t done, size_t n) {
-    if (progress) progress("merge", done, n);
-  });
-  spdlog::info("merged {} tile files ({} points) into {}", merge_order.size(), merged.points, fused_las_path);
-  return merged;
+  MethodTileFuser fuser(config, *input, plan, identity.views);
+  return WorkOnTile(job, *tile, /*forced=*/false, nullptr, fuser);
 }
 
 MergeJobOutcome MergeJob(const JobConfig& given) {

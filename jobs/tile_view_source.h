@@ -1,12 +1,12 @@
 #pragma once
 // The views of one tile: of each view that sees the tile's halo box, only the window of its depth map, colour
-// cache and superpixel labels that the box needs (jobs/tile_plan.h). The superpixel and colour caches must exist
+// cache and superpixel labels that the box needs (tiles/tile_plan.h). The superpixel and colour caches must exist
 // (EnsureTiledSuperpixels, jobs/tile_fusion.h). A cluster whose centroid lies in the window becomes the same node
 // as in an untiled run: cluster statistics are the whole view's (from the cache file's table).
 #include <string>
 
 #include "jobs/cluster_table_cache.h"
-#include "jobs/tile_plan.h"
+#include "tiles/tile_plan.h"
 #include "jobs/view_source.h"
 
 namespace sacfuse {

@@ -12,9 +12,9 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "config/job_config.h"
-#include "jobs/report_colours.h"
-#include "jobs/report_data.h"
-#include "jobs/report_html.h"
+#include "report/report_colours.h"
+#include "report/report_data.h"
+#include "report/report_html.h"
 #include "tests/support/block_suite.h"
 
 namespace sacfuse {
@@ -92,7 +92,7 @@ TEST_F(ReportEndToEndTest, UntiledRunWritesASelfContainedReportWithScores) {
   const fs::path report = Out("untiled") / "report";
   ExpectSelfContained(report);
   const std::string html = Page(report);
-  // The scores of eval.json are on the page (the run rewrote it after scoring).
+  // The scores of eval.json are on the page (the run scores before it writes the report).
   const nlohmann::json eval = ReadJsonFile(Out("untiled") / "eval.json");
   char f1[32];
   std::snprintf(f1, sizeof(f1), "%.1f %%", 100.0 * eval.at("scores").at(0).at("f1").get<double>());

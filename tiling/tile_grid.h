@@ -22,7 +22,7 @@ struct TilingOptions {
   // percentile of the sparse points' z, padded by 10 m). z_max_m > z_min_m.
   double z_min_m = 0.0;
   double z_max_m = 100.0;
-  // Multi-worker runs (jobs/tile_claim.h): a tile claim older than this is stale and may be taken over, seconds;
+  // Multi-worker runs (tiles/tile_claim.h): a tile claim older than this is stale and may be taken over, seconds;
   // > 0. Not result-affecting.
   double claim_timeout_s = 6 * 3600.0;
 };

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "tools/bench/colmap_fusion.h"
-#include "tools/eval/eval.h"
+#include "eval/eval.h"
 
 namespace sacfuse {
 

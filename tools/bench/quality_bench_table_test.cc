@@ -8,7 +8,7 @@
 #include "tests/support/error_of.h"
 #include "tests/support/test_support.h"
 #include "tools/bench/quality_bench_table.h"
-#include "tools/eval/eval_report_json.h"
+#include "eval/eval_report_json.h"
 
 namespace sacfuse::bench {
 namespace {

@@ -11,7 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "core/error.h"
-#include "jobs/version.h"
+#include "config/version.h"
 #include "tools/bench/aerial_bench_plan.h"
 #include "tools/bench/child_process.h"
 #include "tools/bench/quality_bench.h"

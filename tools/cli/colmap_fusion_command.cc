@@ -16,7 +16,7 @@
 #include "tools/bench/colmap_fusion_report.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
-#include "tools/cli/eval_runner.h"
+#include "eval/eval_runner.h"
 
 namespace sacfuse::cli {
 namespace {

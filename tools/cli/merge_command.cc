@@ -7,7 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "config/job_config.h"
-#include "jobs/output_layout.h"
+#include "config/output_layout.h"
 #include "jobs/tile_queue.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"

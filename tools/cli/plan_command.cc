@@ -9,7 +9,8 @@
 
 #include "config/job_config.h"
 #include "core/error.h"
-#include "jobs/tile_plan.h"
+#include "jobs/tile_queue.h"
+#include "tiles/tile_plan.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
 

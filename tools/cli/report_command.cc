@@ -1,5 +1,5 @@
 // `sacfuse report CONFIG [--out DIR] [--no-before]`: (re)writes the HTML report of a finished (or failed) run from
-// the files in its output folder: DIR/report/index.html and its pictures (jobs/report_writer.h). --out writes it
+// the files in its output folder: DIR/report/index.html and its pictures (report/report_writer.h). --out writes it
 // elsewhere, e.g. for a run folder that is read-only. Prints the page's path, the time taken and the peak RSS.
 #include <cstdio>
 #include <filesystem>
@@ -10,7 +10,8 @@
 
 #include "config/job_config.h"
 #include "core/error.h"
-#include "jobs/report_writer.h"
+#include "jobs/job_report.h"
+#include "report/report_writer.h"
 #include "jobs/run_state.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
@@ -29,7 +30,7 @@ int ReportCommand(const ReportArgs& args) {
   if (!std::filesystem::is_directory(config.output.dir)) {
     throw InputError(config.output.dir, "no run output here (output.dir of " + args.config_path + "); run it first");
   }
-  ReportOptions options;
+  ReportOptions options = JobReportOptions(config);  // the input opened from config.input when needed
   options.report_dir = args.out_dir;
   options.before_profile = !args.no_before;
   const ReportFigures figures = WriteHtmlReport(config, options);

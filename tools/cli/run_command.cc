@@ -9,14 +9,11 @@
 
 #include "config/job_config.h"
 #include "core/error.h"
-#include "io/atomic_file.h"
-#include "jobs/output_layout.h"
+#include "config/output_layout.h"
 #include "jobs/run_fusion.h"
 #include "jobs/run_state.h"
-#include "jobs/report_writer.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
-#include "tools/cli/eval_runner.h"
 
 namespace sacfuse::cli {
 namespace {
@@ -105,12 +102,7 @@ int RunCommand(const RunArgs& args) {
       std::cout << "fused cloud: " << summary.las_path << " (" << summary.output_points << " points, "
                 << summary.views.size() << " views, method " << summary.method << ")\n";
       PrintSourceViewSummary(summary, std::cout);
-      if (!config.evaluation.reference.empty()) {
-        const EvalRequest request = EvalRequestFromConfig(
-            config, summary.las_path, (std::filesystem::path(config.output.dir) / "eval.json").string());
-        RunEvaluation(request, std::cout);
-        RewriteHtmlReportPageOrWarn(config);  // the report's page again, now with eval.json's scores
-      }
+      std::cout << summary.eval_text;  // the scores (evaluation.reference), computed by the job
     } catch (const ConfigError&) {
       MarkRunRefused(config, previous_state);  // refused before anything was computed: exit 2
       throw;

@@ -3,24 +3,22 @@
 // manifest and the markers; no plan is built, nothing is computed, and the inputs are not re-identified: a
 // changed input shows at the next run). A done tile is re-checked against its
 // LAS file's size and header count and the current config's hash; --verify also recomputes the checksums.
-// A pending tile that a live worker has claimed (jobs/tile_claim.h) names the worker.
+// A pending tile that a live worker has claimed (tiles/tile_claim.h) names the worker.
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <vector>
 
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "config/job_config.h"
 #include "config/result_settings.h"
 #include "core/error.h"
-#include "jobs/output_layout.h"
+#include "config/output_layout.h"
 #include "jobs/run_state.h"
-#include "jobs/tile_claim.h"
-#include "jobs/tile_marker.h"
-#include "jobs/tiled_run.h"
+#include "tiles/tile_claim.h"
+#include "tiles/tile_manifest.h"
+#include "tiles/tile_marker.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
 
@@ -40,21 +38,19 @@ int StatusCommand(const StatusArgs& args) {
   if (!run_state.empty()) std::cout << run_state << "\n";
   const int exit_code = last_run_failed ? kExitFailure : kExitOk;
   const std::string tiles_dir = TilesDir(config);
-  const std::string manifest_path = (std::filesystem::path(tiles_dir) / "manifest.json").string();
-  std::ifstream in(manifest_path);
-  if (!in) {
-    std::cout << "no tiled run has started in " << config.output.dir << " (no " << manifest_path << ")\n";
+  const std::optional<TileManifest> manifest = TileManifest::Read(tiles_dir);
+  if (!manifest) {
+    std::cout << "no tiled run has started in " << config.output.dir << " (no " << TileManifest::Path(tiles_dir)
+              << ")\n";
     return exit_code;
   }
-  const nlohmann::json manifest = nlohmann::json::parse(in);
   // tiling.tile_size_m = 0: the size the run chose from its memory budget, as recorded in the manifest.
-  if (config.tiling.tile_size_m <= 0) config.tiling.tile_size_m = manifest.value("tile_size_m", 0.0);
+  if (config.tiling.tile_size_m <= 0) config.tiling.tile_size_m = manifest->tile_size_m;
   const std::string hash = ResultSettingsHash(config);
   std::vector<std::string> done, failed, pending;
   std::vector<std::string> failed_reasons, pending_reasons;
   uint64_t done_points = 0;
-  for (const auto& id_json : manifest.at("tiles")) {
-    const std::string id = id_json.get<std::string>();
+  for (const std::string& id : manifest->tiles) {
     const TileCheck check = VerifyTileDone(tiles_dir, id, hash, args.verify);
     if (check.done) {
       done.push_back(id);
@@ -67,10 +63,10 @@ int StatusCommand(const StatusArgs& args) {
       pending_reasons.push_back(check.reason);
     }
   }
-  const size_t total = manifest.at("tiles").size();
+  const size_t total = manifest->tiles.size();
   std::cout << total << " tiles with views: " << done.size() << " done (" << done_points << " points), "
             << failed.size() << " failed, " << pending.size() << " pending\n";
-  if (manifest.at("config_hash").get<std::string>() != hash) {
+  if (manifest->config_hash != hash) {
     std::cout << "the config's result-affecting settings differ from the last run's: tiles must be recomputed\n";
   }
   for (const auto& id : done) std::cout << "done     " << id << "\n";

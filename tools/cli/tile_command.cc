@@ -1,14 +1,14 @@
 // `sacfuse tile CONFIG --id ID`: computes exactly one tile of a tiled run, for running tiles as separate
 // processes or on several machines sharing DIR (GNU parallel, SLURM arrays; see tools/slurm_array_example.sh).
 // Idempotent and safe to run concurrently: a done tile is skipped and a tile another live worker has claimed is
-// left to it (both exit 0); see jobs/tile_queue.h and jobs/tile_claim.h.
-#include <filesystem>
+// left to it (both exit 0); see jobs/tile_queue.h and tiles/tile_claim.h.
 #include <iostream>
 #include <memory>
 
 #include <CLI/CLI.hpp>
 
 #include "config/job_config.h"
+#include "config/output_layout.h"
 #include "jobs/tile_queue.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
@@ -23,7 +23,7 @@ struct TileArgs {
 
 int TileCommand(const TileArgs& args) {
   const JobConfig config = LoadJobConfig(args.config_path);
-  SetupLogging(config.log.level, (std::filesystem::path(config.output.dir) / "sacfuse.log").string());
+  SetupLogging(config.log.level, LogPath(config));
   const TileWorkOutcome out = RunOneTile(config, args.id);
   switch (out.result) {
     case TileWork::kAlreadyDone:

@@ -2,7 +2,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "jobs/version.h"
+#include "config/version.h"
 #include "tools/cli/commands.h"
 
 namespace sacfuse::cli {

@@ -1,0 +1,37 @@
+#include "config/output_layout.h"
+
+#include <filesystem>
+
+namespace sacfuse {
+namespace {
+
+std::string InOutputDir(const JobConfig& config, const std::string& name) {
+  return (std::filesystem::path(config.output.dir) / name).string();
+}
+
+}  // namespace
+
+std::string FusedLasPath(const JobConfig& config) { return InOutputDir(config, "fused." + config.output.format); }
+std::string EffectiveConfigPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.effective.yaml"); }
+std::string RunReportPath(const JobConfig& config) { return InOutputDir(config, "run_report.json"); }
+std::string EvalJsonPath(const JobConfig& config) { return InOutputDir(config, "eval.json"); }
+std::string LogPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.log"); }
+std::string RunStatePath(const JobConfig& config) { return InOutputDir(config, "run_state.json"); }
+std::string PlanJsonPath(const JobConfig& config) { return InOutputDir(config, "plan.json"); }
+std::string TilesDir(const JobConfig& config) { return InOutputDir(config, "tiles"); }
+std::string ReportDir(const JobConfig& config) { return InOutputDir(config, "report"); }
+
+std::string SuperpixelCacheDir(const JobConfig& config) {
+  return config.fusion.superpixel_cache_dir.empty() ? InOutputDir(config, "superpixels")
+                                                    : config.fusion.superpixel_cache_dir;
+}
+
+std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name) {
+  return (std::filesystem::path(cache_dir) / (image_name + ".spx")).string();
+}
+
+std::string ColourCachePath(const std::string& cache_dir, const std::string& image_name) {
+  return (std::filesystem::path(cache_dir) / (image_name + ".rgb")).string();
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,38 @@
+#pragma once
+// Where a job's outputs live, one function per file or folder under output.dir (every other file names them
+// through these):
+//   DIR/fused.laz | fused.las   the fused cloud (output.format)
+//   DIR/sacfuse.effective.yaml  the config actually used
+//   DIR/run_report.json         numbers of the run
+//   DIR/eval.json               scores against evaluation.reference (eval/eval_runner.h)
+//   DIR/sacfuse.log             the log
+//   DIR/run_state.json          running | failed | succeeded, of the last `sacfuse run` (jobs/run_state.h)
+//   DIR/plan.json               the tile plan shared by every worker (tiles/tile_plan.h)
+//   DIR/tiles/                  per-tile state of tiled runs (tiles/tile_manifest.h, tiles/tile_marker.h)
+//   DIR/report/                 the HTML report (report/report_writer.h)
+//   DIR/superpixels/            superpixel and colour caches (or fusion.superpixel_cache_dir; jobs/superpixel_cache.h)
+#include <string>
+
+#include "config/job_config.h"
+
+namespace sacfuse {
+
+std::string FusedLasPath(const JobConfig& config);  // DIR/fused.<output.format>
+std::string EffectiveConfigPath(const JobConfig& config);
+std::string RunReportPath(const JobConfig& config);
+std::string EvalJsonPath(const JobConfig& config);
+std::string LogPath(const JobConfig& config);
+std::string RunStatePath(const JobConfig& config);
+std::string PlanJsonPath(const JobConfig& config);
+std::string TilesDir(const JobConfig& config);
+std::string ReportDir(const JobConfig& config);  // the default report folder (`sacfuse report --out` may differ)
+
+// The superpixel (and colour) cache folder of a job: fusion.superpixel_cache_dir, or <output.dir>/superpixels.
+std::string SuperpixelCacheDir(const JobConfig& config);
+// Cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.spx").
+std::string SuperpixelCachePath(const std::string& cache_dir, const std::string& image_name);
+// Colour cache file of an image name ("nadir/0001.jpg" -> "<dir>/nadir/0001.jpg.rgb"): the image resampled to
+// the depth raster (io/colour_raster_io.h), written by the superpixel pass so tiles read colour windows.
+std::string ColourCachePath(const std::string& cache_dir, const std::string& image_name);
+
+}  // namespace sacfuse

@@ -1,0 +1,77 @@
+// EvaluateLasFiles: the file front end of eval.h.
+#include <cmath>
+#include <filesystem>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "io/geo_mask_io.h"
+#include "io/las_reader.h"
+#include "eval/eval.h"
+
+namespace sacfuse {
+namespace {
+
+// Streams the coordinates (and point source IDs) of a LAS file; every failure becomes an InputError naming it.
+// Keeps every `stride`-th point (the first, then every stride-th after it); *count receives the file's count.
+void ReadLasCoordinates(const std::string& path, std::vector<Eigen::Vector3d>* xyz, std::vector<uint16_t>* ids,
+                        double max_points = 0, uint64_t* stride_out = nullptr, uint64_t* count_out = nullptr) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "no such LAS file");
+  try {
+    LasReader reader(path);
+    const uint64_t count = reader.header().point_count;
+    const uint64_t stride =
+        max_points > 0 && count > max_points ? static_cast<uint64_t>(std::ceil(count / max_points)) : 1;
+    if (stride_out != nullptr) *stride_out = stride;
+    if (count_out != nullptr) *count_out = count;
+    xyz->reserve(static_cast<size_t>(count / stride + 1));
+    if (ids != nullptr) ids->reserve(static_cast<size_t>(count / stride + 1));
+    std::vector<LasPoint> chunk;
+    uint64_t index = 0;
+    while (reader.Read(&chunk, 1 << 16) > 0) {
+      for (const LasPoint& p : chunk) {
+        if (index++ % stride != 0) continue;
+        xyz->push_back(p.xyz);
+        if (ids != nullptr) ids->push_back(p.point_source_id);
+      }
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError(path, std::string("cannot read LAS file: ") + e.what());
+  }
+}
+
+}  // namespace
+
+EvalReport EvaluateLasFiles(const std::string& result_las, const std::string& reference_las,
+                            const EvalOptions& options) {
+  ValidateEvalOptions(options);
+  std::vector<Eigen::Vector3d> reference, result;
+  std::vector<uint16_t> ids;
+  ReadLasCoordinates(reference_las, &reference, nullptr);
+  if (reference.empty()) throw InputError(reference_las, "the reference LAS file holds no points");
+  uint64_t stride = 1, in_file = 0;
+  ReadLasCoordinates(result_las, &result, &ids, options.max_result_points, &stride, &in_file);
+  GeoMask mask;
+  const bool has_mask = !options.mask_path.empty();
+  if (has_mask) {
+    try {
+      mask = ReadGeoMask(options.mask_path);
+    } catch (const InputError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw InputError(options.mask_path, std::string("cannot read the evaluation mask: ") + e.what());
+    }
+  }
+  EvalReport report = EvaluateClouds(result, ids, reference, has_mask ? &mask : nullptr, options);
+  report.result_points_in_file = in_file;
+  report.result_stride = stride;
+  return report;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,131 @@
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "io/geo_mask_io.h"
+#include "io/las_reader.h"
+#include "io/las_writer.h"
+#include "tests/support/test_support.h"
+#include "eval/eval.h"
+#include "eval/eval_test_scene.h"
+
+namespace sacfuse {
+namespace {
+
+using Points = std::vector<Eigen::Vector3d>;
+const Eigen::Vector3d kUtm(390000.0, 5705000.0, 100.0);
+
+void WriteLas(const std::string& path, const Points& points, bool with_ids) {
+  LasWriterOptions o;
+  o.offset = Eigen::Vector3d(390000.0, 5705000.0, 0.0);
+  LasWriter writer(path, o);
+  std::vector<LasPoint> las(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    las[i].xyz = points[i];
+    if (with_ids) las[i].point_source_id = static_cast<uint16_t>(1 + i % 4);
+  }
+  writer.WritePoints(las.data(), las.size());
+  writer.Close();
+}
+
+Points XyzOf(const std::vector<LasPoint>& las) {
+  Points out;
+  for (const auto& p : las) out.push_back(p.xyz);
+  return out;
+}
+
+class EvaluateLasFilesTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto scene = eval_test::BoxScene();
+    reference_ = eval_test::Shifted(eval_test::SampleGrid(scene), kUtm);
+    result_ = eval_test::Shifted(eval_test::SampleRandom(scene, 20.0, 0.05, 9), kUtm);
+    ref_path_ = (dir_ / "reference.las").string();
+    res_path_ = (dir_ / "result.las").string();
+    WriteLas(ref_path_, reference_, false);
+    WriteLas(res_path_, result_, true);
+  }
+  testing::TempDir dir_;
+  Points reference_, result_;
+  std::string ref_path_, res_path_;
+};
+
+TEST_F(EvaluateLasFilesTest, SameNumbersAsInMemory) {
+  EvalOptions o;
+  o.tau_m = {0.1, 0.2, 0.5};
+  const EvalReport from_files = EvaluateLasFiles(res_path_, ref_path_, o);
+  // Exactly what the files hold (1 mm quantised) through the pure API...
+  const auto las_res = ReadAllLasPoints(res_path_);
+  std::vector<uint16_t> ids;
+  for (const auto& p : las_res) ids.push_back(p.point_source_id);
+  const EvalReport same = EvaluateClouds(XyzOf(las_res), ids, XyzOf(ReadAllLasPoints(ref_path_)), nullptr, o);
+  // ...and the unquantised clouds, which may differ only by points within 1 mm of a threshold.
+  const EvalReport close = EvaluateClouds(result_, {}, reference_, nullptr, o);
+  ASSERT_EQ(from_files.scores.size(), 3u);
+  for (size_t t = 0; t < 3; ++t) {
+    EXPECT_DOUBLE_EQ(from_files.scores[t].accuracy, same.scores[t].accuracy);
+    EXPECT_DOUBLE_EQ(from_files.scores[t].completeness, same.scores[t].completeness);
+    EXPECT_DOUBLE_EQ(from_files.scores[t].raw_f1, same.scores[t].raw_f1);
+    EXPECT_NEAR(from_files.scores[t].f1, close.scores[t].f1, 0.01);
+  }
+  EXPECT_EQ(from_files.result_points, result_.size());
+  EXPECT_EQ(from_files.reference_points, reference_.size());
+  EXPECT_DOUBLE_EQ(from_files.mean_abs_distance_m, same.mean_abs_distance_m);
+  ASSERT_EQ(from_files.source_id_histogram.size(), 4u);
+  EXPECT_EQ(from_files.source_id_histogram, same.source_id_histogram);
+  EXPECT_EQ(from_files.source_id_histogram.at(1), (result_.size() + 3) / 4);
+}
+
+TEST_F(EvaluateLasFilesTest, MaskFileIsRead) {
+  GeoMask mask;  // UTM x in [390000, 390020)
+  mask.origin_x = kUtm.x();
+  mask.origin_y = kUtm.y() + 40.0;
+  mask.cell_size_m = 0.5;
+  mask.width = 40;
+  mask.height = 82;
+  mask.cells.assign(40 * 82, 255);
+  EvalOptions o;
+  o.mask_path = (dir_ / "mask.png").string();
+  WriteGeoMask(o.mask_path, mask);
+  const EvalReport r = EvaluateLasFiles(res_path_, ref_path_, o);
+  EXPECT_GT(r.result_points_outside_mask, result_.size() / 3);
+  EXPECT_DOUBLE_EQ(r.area_m2, 40 * 82 * 0.25);
+  o.mask_path = (dir_ / "missing_mask.png").string();
+  try {
+    EvaluateLasFiles(res_path_, ref_path_, o);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {  // the PNG or its JSON sidecar
+    EXPECT_NE(std::string(e.what()).find("missing_mask."), std::string::npos) << e.what();
+  }
+}
+
+void ExpectInputErrorNaming(const std::string& result, const std::string& reference, const std::string& bad) {
+  try {
+    EvaluateLasFiles(result, reference, EvalOptions{});
+    ADD_FAILURE() << "expected InputError for " << bad;
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.file(), bad);
+    EXPECT_NE(std::string(e.what()).find(bad), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(EvaluateLasFilesTest, BadFilesAreNamed) {
+  const std::string missing = (dir_ / "nope.las").string();
+  ExpectInputErrorNaming(missing, ref_path_, missing);
+  ExpectInputErrorNaming(res_path_, missing, missing);
+  const std::string garbage = (dir_ / "garbage.las").string();
+  std::ofstream(garbage) << "this is not a LAS file at all, just some text that is long enough to be read";
+  ExpectInputErrorNaming(garbage, ref_path_, garbage);
+  const std::string truncated = (dir_ / "truncated.las").string();
+  std::filesystem::copy_file(ref_path_, truncated);
+  std::filesystem::resize_file(truncated, std::filesystem::file_size(truncated) / 2);
+  ExpectInputErrorNaming(res_path_, truncated, truncated);
+  const std::string empty = (dir_ / "empty.las").string();
+  WriteLas(empty, {}, false);
+  ExpectInputErrorNaming(res_path_, empty, empty);  // a reference without points
+}
+
+}  // namespace
+}  // namespace sacfuse

@@ -1,5 +1,0 @@
-#include "jobs/version.h"
-
-namespace sacfuse {
-std::string VersionString() { return "sacfuse 0.1.0"; }
-}  // namespace sacfuse

@@ -1,0 +1,56 @@
+#include "tiles/memory_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+
+namespace sacfuse {
+
+uint64_t BlockPixels::total_depth_pixels() const {
+  uint64_t n = 0;
+  for (const uint64_t p : depth_pixels) n += p;
+  return n;
+}
+
+uint64_t BlockPixels::total_image_pixels() const {
+  uint64_t n = 0;
+  for (const uint64_t p : image_pixels) n += p;
+  return n;
+}
+
+BlockPixels MeasureBlockPixels(const DepthBlock& input) {
+  BlockPixels out;
+  for (const View& view : input.views()) {
+    const DepthRasterSize size = input.DepthSize(view);
+    out.depth_pixels.push_back(static_cast<uint64_t>(size.width) * size.height);
+    out.image_pixels.push_back(static_cast<uint64_t>(view.camera.width) * view.camera.height);
+  }
+  return out;
+}
+
+uint64_t MemoryBudgetBytes(double memory_gb) { return static_cast<uint64_t>(std::llround(memory_gb * kGiB)); }
+
+uint64_t ClusterCacheBudgetBytes(uint64_t budget_bytes) { return std::min<uint64_t>(256 * kMiB, budget_bytes / 16); }
+
+uint64_t TileMemoryPoolBytes(uint64_t budget_bytes) {
+  const uint64_t reserved = kProcessBaseBytes + ClusterCacheBudgetBytes(budget_bytes);
+  return budget_bytes > reserved ? budget_bytes - reserved : 0;
+}
+
+uint64_t TileBytes(uint64_t window_pixels) { return window_pixels * kTileBytesPerWindowPixel; }
+
+uint64_t UntiledSacBytes(const BlockPixels& pixels) {
+  return kProcessBaseBytes + pixels.total_depth_pixels() * kUntiledBytesPerDepthPixel +
+         pixels.total_image_pixels() * kBytesPerImagePixel;
+}
+
+uint64_t SuperpixelPassBytes(const BlockPixels& pixels) {
+  uint64_t peak = 0;
+  for (size_t v = 0; v < pixels.depth_pixels.size(); ++v) {
+    peak = std::max(peak, pixels.depth_pixels[v] * kSuperpixelPassBytesPerDepthPixel +
+                              pixels.image_pixels[v] * kBytesPerImagePixel);
+  }
+  return kProcessBaseBytes + peak;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,215 @@
+#include "tiles/tile_claim.h"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+
+namespace sacfuse {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr const char* kClaimSuffix = ".claim";
+constexpr int kTakeOverAttempts = 3;
+
+std::atomic<uint64_t> g_counter{0};
+
+int64_t NowUnixS() {
+  return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+std::string ReadText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream os;
+  os << in.rdbuf();
+  return os.str();
+}
+
+std::optional<TileClaimInfo> ParseClaim(const std::string& text) {
+  try {
+    const nlohmann::json j = nlohmann::json::parse(text);
+    TileClaimInfo c;
+    c.host = j.at("host").get<std::string>();
+    c.pid = j.at("pid").get<int64_t>();
+    c.start_unix_s = j.at("start_unix_s").get<int64_t>();
+    c.token = j.at("token").get<std::string>();
+    return c;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
+// Seconds since the file was last modified (0 when it cannot be stat'ed).
+double FileAgeS(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return 0.0;
+  return static_cast<double>(NowUnixS() - st.st_mtime);
+}
+
+// Live claim content at `path` (parsed or not)? Missing file: false.
+bool ContentIsLive(const std::string& path, const std::string& text, double timeout_s) {
+  if (const auto c = ParseClaim(text)) return !ClaimIsStale(*c, timeout_s);
+  return FileAgeS(path) <= timeout_s;  // being written, or garbage: live until it times out
+}
+
+// Creates the claim file exclusively; false when it exists.
+bool CreateExclusive(const std::string& path, const std::string& contents) {
+  const int fd = ::open(path.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    if (errno == EEXIST) return false;
+    throw Error(path + ": cannot create claim: " + std::strerror(errno));
+  }
+  const bool ok = ::write(fd, contents.data(), contents.size()) == static_cast<ssize_t>(contents.size()) &&
+                  ::fsync(fd) == 0;
+  ::close(fd);
+  if (!ok) {
+    ::unlink(path.c_str());
+    throw Error(path + ": cannot write claim");
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string TileClaimPath(const std::string& tiles_dir, const std::string& id) {
+  return (fs::path(tiles_dir) / (id + kClaimSuffix)).string();
+}
+
+std::string ThisHostName() {
+  char name[256] = {};
+  if (::gethostname(name, sizeof(name) - 1) != 0) return "unknown-host";
+  return name;
+}
+
+std::optional<TileClaimInfo> ReadTileClaim(const std::string& tiles_dir, const std::string& id) {
+  const std::string path = TileClaimPath(tiles_dir, id);
+  if (!fs::exists(path)) return std::nullopt;
+  return ParseClaim(ReadText(path));
+}
+
+bool ProcessIsGone(const std::string& host, int64_t pid) {
+  if (host != ThisHostName() || pid <= 0) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+bool ClaimIsStale(const TileClaimInfo& claim, double timeout_s) {
+  if (static_cast<double>(NowUnixS() - claim.start_unix_s) > timeout_s) return true;
+  return ProcessIsGone(claim.host, claim.pid);
+}
+
+std::string DescribeClaim(const TileClaimInfo& claim) {
+  char when[64] = "?";
+  const std::time_t t = static_cast<std::time_t>(claim.start_unix_s);
+  std::tm tm {};
+  if (::gmtime_r(&t, &tm) != nullptr) std::strftime(when, sizeof(when), "%Y-%m-%d %H:%M:%S UTC", &tm);
+  return claim.host + " pid " + std::to_string(claim.pid) + " since " + when;
+}
+
+bool TileClaimIsLive(const std::string& tiles_dir, const std::string& id, double timeout_s) {
+  const std::string path = TileClaimPath(tiles_dir, id);
+  if (!fs::exists(path)) return false;
+  return ContentIsLive(path, ReadText(path), timeout_s);
+}
+
+bool AnyLiveTileClaim(const std::string& tiles_dir, double timeout_s) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(tiles_dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.size() <= std::strlen(kClaimSuffix) ||
+        name.compare(name.size() - std::strlen(kClaimSuffix), std::string::npos, kClaimSuffix) != 0)
+      continue;
+    if (ContentIsLive(e.path().string(), ReadText(e.path().string()), timeout_s)) return true;
+  }
+  return false;
+}
+
+ClaimAttempt TryClaimTile(const std::string& tiles_dir, const std::string& id, double timeout_s) {
+  const std::string path = TileClaimPath(tiles_dir, id);
+  TileClaimInfo me;
+  me.host = ThisHostName();
+  me.pid = ::getpid();
+  me.start_unix_s = NowUnixS();
+  me.token = me.host + "-" + std::to_string(me.pid) + "-" +
+             std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + "-" +
+             std::to_string(g_counter++);
+  const std::string contents = nlohmann::json{{"host", me.host},
+                                              {"pid", me.pid},
+                                              {"start_unix_s", me.start_unix_s},
+                                              {"token", me.token}}.dump() + "\n";
+  ClaimAttempt attempt;
+  for (int i = 0; i < kTakeOverAttempts; ++i) {
+    if (CreateExclusive(path, contents)) {
+      attempt.claimed = true;
+      attempt.token = me.token;
+      return attempt;
+    }
+    const std::string seen = ReadText(path);
+    if (ContentIsLive(path, seen, timeout_s)) {
+      const auto holder = ParseClaim(seen);
+      attempt.holder = holder ? DescribeClaim(*holder) : "another worker (claim being written)";
+      return attempt;
+    }
+    // Stale: move it out of the way under a unique name, then check that what moved is what was judged stale.
+    const std::string moved = path + ".stale-" + me.host + "-" + std::to_string(me.pid) + "-" +
+                              std::to_string(g_counter++);
+    if (::rename(path.c_str(), moved.c_str()) != 0) {
+      if (errno == ENOENT) continue;  // another worker moved or released it first
+      throw Error(path + ": cannot move stale claim: " + std::strerror(errno));
+    }
+    if (ReadText(moved) != seen) {
+      if (::link(moved.c_str(), path.c_str()) != 0 && errno != EEXIST) {
+        ::unlink(moved.c_str());
+        throw Error(path + ": cannot restore a claim moved by mistake: " + std::strerror(errno));
+      }
+      ::unlink(moved.c_str());
+      continue;  // the restored claim is live: the next round reports its holder
+    }
+    ::unlink(moved.c_str());
+    attempt.took_over = true;
+  }
+  const auto holder = ReadTileClaim(tiles_dir, id);
+  attempt.holder = holder ? DescribeClaim(*holder) : "another worker";
+  return attempt;
+}
+
+size_t RemoveStaleTileClaims(const std::string& tiles_dir, double timeout_s) {
+  std::vector<std::string> stale;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(tiles_dir, ec)) {
+    const std::string name = e.path().filename().string();
+    const size_t n = std::strlen(kClaimSuffix);
+    if (name.size() <= n || name.compare(name.size() - n, n, kClaimSuffix) != 0) continue;
+    if (!ContentIsLive(e.path().string(), ReadText(e.path().string()), timeout_s))
+      stale.push_back(name.substr(0, name.size() - n));
+  }
+  size_t removed = 0;
+  for (const std::string& id : stale) {
+    const ClaimAttempt a = TryClaimTile(tiles_dir, id, timeout_s);
+    if (!a.claimed) continue;
+    ReleaseTileClaim(tiles_dir, id, a.token);
+    removed += a.took_over ? 1 : 0;
+  }
+  return removed;
+}
+
+void ReleaseTileClaim(const std::string& tiles_dir, const std::string& id, const std::string& token) {
+  const auto claim = ReadTileClaim(tiles_dir, id);
+  if (claim && claim->token == token) ::unlink(TileClaimPath(tiles_dir, id).c_str());
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,84 @@
+#pragma once
+// Per-tile state of a tiled run, on disk under DIR/tiles/ (the state is the files themselves):
+//   <id>.las        the tile's core points (absent for a tile whose core got no points)
+//   <id>.done.json  written atomically AFTER <id>.las is renamed into place: count, size, bounds, checksum
+//   <id>.failed.json  why the tile's last attempt threw
+// A tile is done only when its marker parses, names the current result-settings hash, its inputs (below) are the
+// current ones, and its LAS file exists with the recorded size, a readable header with the recorded count, and
+// the recorded FNV-1a 64 checksum.
+// The marker records the tile's inputs: its core and halo and, for every view whose window it reads, the window
+// and the view's identity (io/view_identity.h: depth map, image, camera). A tile is recomputed exactly when one
+// of those differs from the current plan and inputs.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/pixel_window.h"
+#include "core/view.h"
+#include "io/view_identity.h"
+#include "tiles/tile_plan.h"
+
+namespace sacfuse {
+
+struct TileInputView {
+  uint32_t view = 0;
+  std::string name;
+  PixelWindow window;
+  ViewIdentity identity;
+};
+
+struct TileInputs {
+  std::array<double, 4> core = {0, 0, 0, 0}, halo = {0, 0, 0, 0};  // min x, min y, max x, max y
+  std::vector<TileInputView> views;                                // in the tile's view order
+};
+
+// The inputs of a planned tile: `views` and `identities` by view index (the block's).
+TileInputs TileInputsOf(const PlannedTile& tile, const std::vector<View>& views,
+                        const std::vector<ViewIdentity>& identities);
+
+struct TileDoneMarker {
+  std::string id;
+  std::string config_hash;  // ResultSettingsHash of the run that wrote it
+  uint64_t points = 0;      // 0: no LAS file
+  uint64_t file_size = 0;   // bytes of <id>.las
+  std::string checksum;     // FNV-1a 64 of every byte of <id>.las, hex ("" when points == 0)
+  std::array<double, 3> min = {0, 0, 0}, max = {0, 0, 0};  // header bounds
+  uint64_t views = 0;                                      // views the tile used
+  double seconds = 0.0;                                    // wall time of the tile
+  double peak_rss_mib = 0.0;                               // process peak RSS when the tile finished
+  int64_t finished_unix_ns = 0;                            // wall clock when the marker was written
+  std::optional<TileInputs> inputs;                        // absent in markers of older versions
+};
+
+struct TileCheck {
+  bool done = false;
+  std::string reason;  // why not done ("no marker", "LAS size 12 != 345", ...); "" when done
+  // Not done because its inputs changed: each changed view of the tile as "view 12 (a.jpg): depth map changed
+  // (...)", or how the tile's geometry or windows changed.
+  std::vector<std::string> input_changes;
+};
+
+std::string TileLasPath(const std::string& tiles_dir, const std::string& id);
+std::string TileDonePath(const std::string& tiles_dir, const std::string& id);
+std::string TileFailedPath(const std::string& tiles_dir, const std::string& id);
+
+// Fills size, count, bounds and checksum from a finished tile LAS (points > 0), or the empty-tile fields.
+TileDoneMarker DescribeTileLas(const std::string& tiles_dir, const std::string& id, bool has_las);
+void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& marker);
+std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, const std::string& id);
+
+// Full check as described above. With full_checksum = false the checksum is not recomputed (size, header and
+// count still are): what `sacfuse status` uses to stay cheap. `inputs` null: the inputs are not compared (status,
+// which opens no input).
+TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, const std::string& config_hash,
+                         bool full_checksum = true, const TileInputs* inputs = nullptr);
+
+void WriteTileFailedMarker(const std::string& tiles_dir, const std::string& id, const std::string& reason);
+std::optional<std::string> ReadTileFailedReason(const std::string& tiles_dir, const std::string& id);
+// Removes a tile's done/failed markers and LAS (before it is recomputed).
+void ClearTileState(const std::string& tiles_dir, const std::string& id);
+
+
+}  // namespace sacfuse

@@ -1,0 +1,116 @@
+#include "tiles/tile_marker.h"
+
+#include "io/atomic_file.h"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "io/las_writer.h"
+#include "tests/support/test_support.h"
+
+namespace sacfuse {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::TempDir;
+
+class TileMarkerTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    LasWriterOptions options;
+    options.offset = Eigen::Vector3d(1000, 2000, 0);
+    LasWriter writer(TileLasPath(Dir(), "3_4"), options);
+    std::vector<FusedPoint> points(100);
+    for (size_t i = 0; i < points.size(); ++i) {
+      points[i].point_in_world = Eigen::Vector3d(1001 + 0.1 * i, 2002, 50 + 0.01 * i);
+      points[i].view_index = static_cast<uint32_t>(i % 3);
+    }
+    writer.Write(points.data(), points.size());
+    writer.Close();
+    TileDoneMarker marker = DescribeTileLas(Dir(), "3_4", true);
+    marker.config_hash = "hash-a";
+    marker.views = 3;
+    WriteTileDoneMarker(Dir(), marker);
+  }
+  std::string Dir() const { return dir_.path().string(); }
+  std::string Las() const { return TileLasPath(Dir(), "3_4"); }
+
+  TempDir dir_;
+};
+
+TEST_F(TileMarkerTest, CompleteTileIsDoneAndMarkerRoundTrips) {
+  EXPECT_TRUE(VerifyTileDone(Dir(), "3_4", "hash-a").done) << VerifyTileDone(Dir(), "3_4", "hash-a").reason;
+  const auto marker = ReadTileDoneMarker(Dir(), "3_4");
+  ASSERT_TRUE(marker);
+  EXPECT_EQ(marker->points, 100u);
+  EXPECT_EQ(marker->file_size, fs::file_size(Las()));
+  EXPECT_EQ(marker->checksum.size(), 16u);
+  EXPECT_NEAR(marker->min[0], 1001.0, 1e-9);
+  EXPECT_NEAR(marker->max[0], 1010.9, 1e-9);
+  EXPECT_GT(marker->finished_unix_ns, 0);
+}
+
+TEST_F(TileMarkerTest, WrongConfigHashIsNotDone) {
+  const TileCheck check = VerifyTileDone(Dir(), "3_4", "hash-b");
+  EXPECT_FALSE(check.done);
+  EXPECT_NE(check.reason.find("another config"), std::string::npos) << check.reason;
+}
+
+TEST_F(TileMarkerTest, TruncatedOrExtendedLasIsNotDone) {
+  fs::resize_file(Las(), fs::file_size(Las()) - 10);
+  EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
+  fs::resize_file(Las(), fs::file_size(Las()) + 20);
+  const TileCheck check = VerifyTileDone(Dir(), "3_4", "hash-a");
+  EXPECT_FALSE(check.done);
+  EXPECT_NE(check.reason.find("size"), std::string::npos) << check.reason;
+}
+
+TEST_F(TileMarkerTest, FlippedByteFailsTheChecksumButNotTheQuickCheck) {
+  {
+    std::fstream f(Las(), std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(fs::file_size(Las()) - 5));
+    f.put('\x7f');
+  }
+  const TileCheck check = VerifyTileDone(Dir(), "3_4", "hash-a");
+  EXPECT_FALSE(check.done);
+  EXPECT_NE(check.reason.find("checksum"), std::string::npos) << check.reason;
+  EXPECT_TRUE(VerifyTileDone(Dir(), "3_4", "hash-a", /*full_checksum=*/false).done);
+}
+
+TEST_F(TileMarkerTest, MissingLasOrBrokenMarkerIsNotDone) {
+  fs::remove(Las());
+  EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
+  std::ofstream(TileDonePath(Dir(), "3_4")) << "{\"id\": \"3_4\", \"poi";
+  EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
+  fs::remove(TileDonePath(Dir(), "3_4"));
+  EXPECT_EQ(VerifyTileDone(Dir(), "3_4", "hash-a").reason, "no done marker");
+}
+
+TEST_F(TileMarkerTest, EmptyTileIsDoneWithoutLasButNotWithAStrayOne) {
+  TileDoneMarker empty = DescribeTileLas(Dir(), "0_0", false);
+  empty.config_hash = "hash-a";
+  WriteTileDoneMarker(Dir(), empty);
+  EXPECT_TRUE(VerifyTileDone(Dir(), "0_0", "hash-a").done);
+  fs::copy_file(Las(), TileLasPath(Dir(), "0_0"));
+  EXPECT_FALSE(VerifyTileDone(Dir(), "0_0", "hash-a").done);
+}
+
+TEST_F(TileMarkerTest, FailedMarkerAndClearingAndTemporaryFiles) {
+  WriteTileFailedMarker(Dir(), "3_4", "depth map unreadable");
+  EXPECT_EQ(ReadTileFailedReason(Dir(), "3_4").value_or(""), "depth map unreadable");
+  ClearTileState(Dir(), "3_4");
+  EXPECT_FALSE(fs::exists(Las()));
+  EXPECT_FALSE(ReadTileFailedReason(Dir(), "3_4"));
+  EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
+  std::ofstream(Las() + ".tmp-123-0") << "partial";
+  std::ofstream(dir_ / "keep.las") << "x";
+  std::ofstream(dir_ / "notes.tmp-draft") << "not ours";  // not the TemporaryPathFor pattern: kept
+  EXPECT_EQ(RemoveTemporaryFiles(Dir()), std::vector<std::string>{Las() + ".tmp-123-0"});
+  EXPECT_TRUE(fs::exists(dir_ / "keep.las"));
+  EXPECT_TRUE(fs::exists(dir_ / "notes.tmp-draft"));
+}
+
+}  // namespace
+}  // namespace sacfuse

@@ -1,0 +1,41 @@
+#pragma once
+// The merge step of a tiled run: the tile LAS files, in grid order, streamed chunk by chunk into one LasWriter
+// (never the whole cloud in memory). Every tile must carry exactly the writer's scale and offset, so the
+// stored integers are copied unchanged.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "config/job_config.h"
+#include "io/depth_block.h"
+#include "io/las_writer.h"
+#include "io/view_identity.h"
+#include "tiles/tile_plan.h"
+
+namespace sacfuse {
+
+struct MergeResult {
+  uint64_t points = 0;
+  std::vector<uint64_t> points_per_view;  // by view index (point source ID - 1)
+};
+
+// Merges `tile_las_paths` (in the order given) into `out_path`. `options.offset` must be set. Throws
+// InputError naming a tile whose scale or offset differs, or that cannot be read; leaves no partial output.
+MergeResult MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
+                         const LasWriterOptions& options,
+                         const std::function<void(size_t done, size_t total)>& progress = {});
+
+// Streams the done tiles' LAS files, grid order, into `fused_las_path`; `las.offset` must be the plan's shared
+// offset (tiles/tile_manifest.h). Throws Error when a tile with views has no done marker.
+MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
+                          const std::string& fused_las_path,
+                          const std::function<void(const std::string& stage, size_t done, size_t total)>& progress =
+                              {});
+
+// Tiles with views whose done marker does not verify (full checksum, and inputs against `identities`, by view
+// index), grid order.
+std::vector<std::string> MissingTiles(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                                      const std::vector<ViewIdentity>& identities);
+
+}  // namespace sacfuse

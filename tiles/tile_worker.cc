@@ -1,0 +1,89 @@
+#include "tiles/tile_worker.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <optional>
+
+#include <spdlog/spdlog.h>
+
+#include "core/error.h"
+#include "io/resource_usage.h"
+#include "tiles/memory_model.h"
+#include "tiles/tile_claim.h"
+
+namespace sacfuse {
+
+TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const TileInputs& inputs, TileFuser& fuser) {
+  spdlog::info("computing tile {} (pid {})", tile.id, static_cast<long>(::getpid()));
+  ClearTileState(job.tiles_dir, tile.id);
+  const auto start = std::chrono::steady_clock::now();
+  TileFused fused;
+  bool has_las = false;
+  {
+    LasWriter writer(TileLasPath(job.tiles_dir, tile.id), job.las);
+    fused = fuser.Fuse(tile, writer);
+    if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
+      writer.Close();
+      has_las = true;
+    }
+  }
+  TileDoneMarker marker = DescribeTileLas(job.tiles_dir, tile.id, has_las);
+  marker.config_hash = job.hash;
+  marker.views = tile.views.size();
+  marker.inputs = inputs;
+  marker.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  marker.peak_rss_mib = PeakRssMiB();
+  WriteTileDoneMarker(job.tiles_dir, marker);
+  return fused;
+}
+
+void CheckTileFitsBudget(const PlannedTile& tile, uint64_t bytes, const JobConfig& config) {
+  const uint64_t pool = TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb));
+  if (bytes <= pool) return;
+  throw Error(fmt::format("tile {}: out-of-memory guard: its {} views' windows need ~{:.2f} GiB, more than the "
+                          "{:.2f} GiB that resources.memory_gb = {} leaves for tiles; use a smaller "
+                          "tiling.tile_size_m (or 0 = sized from the budget) or raise resources.memory_gb",
+                          tile.id, tile.views.size(), static_cast<double>(bytes) / kGiB,
+                          static_cast<double>(pool) / kGiB, config.resources.memory_gb));
+}
+
+TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool forced, MemoryAdmission* admission,
+                           TileFuser& fuser) {
+  TileWorkOutcome out;
+  const double claim_timeout_s = job.config.tiling.claim_timeout_s;
+  const ClaimAttempt claim = TryClaimTile(job.tiles_dir, tile.id, claim_timeout_s);
+  if (!claim.claimed) {
+    spdlog::info("tile {}: claimed by {}, left to it", tile.id, claim.holder);
+    out.result = TileWork::kHeldElsewhere;
+    out.detail = claim.holder;
+    return out;
+  }
+  TileClaimGuard guard(job.tiles_dir, tile.id, claim.token);
+  if (claim.took_over) spdlog::warn("tile {}: took over a stale claim", tile.id);
+  const TileInputs inputs = TileInputsOf(tile, job.input.views(), job.identities);
+  if (!forced && VerifyTileDone(job.tiles_dir, tile.id, job.hash, true, &inputs).done) {
+    spdlog::info("tile {}: done by another worker", tile.id);
+    return out;
+  }
+  try {
+    if (!job.caches_ready) fuser.PrepareTile(tile);
+    const uint64_t bytes = fuser.TileBytes(tile);
+    CheckTileFitsBudget(tile, bytes, job.config);
+    std::optional<MemoryReservation> reservation;
+    if (admission != nullptr) reservation.emplace(*admission, bytes);
+    out.fused = ComputeTileFiles(job, tile, inputs, fuser);
+    reservation.reset();
+    out.result = TileWork::kComputed;
+    spdlog::info("tile {}: {} views, {} points in its core, {} left to neighbours", tile.id, tile.views.size(),
+                 out.fused.points_written, out.fused.points_not_owned);
+  } catch (const std::exception& e) {
+    spdlog::error("tile {}: failed: {}", tile.id, e.what());
+    WriteTileFailedMarker(job.tiles_dir, tile.id, e.what());
+    out.result = TileWork::kFailed;
+    out.detail = e.what();
+  }
+  return out;
+}
+
+}  // namespace sacfuse
