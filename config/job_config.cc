@@ -69,12 +69,7 @@ void CheckCrossKeyRules(const JobConfig& c, std::vector<OptionError>* errors) {
     errors->push_back({"output.scale_m", Number(c.output.scale_m),
                        "must be 10^k x {1, 0.5, 0.25} (e.g. 0.001, 0.0025, 0.01)"});
   }
-  const FusionMethodKind method = c.fusion.method_kind;
-  if (c.fusion.method != NameOf(method)) {
-    errors->push_back({"fusion.method", c.fusion.method,
-                       "differs from FusionOptions::method_kind (" + NameOf(method) +
-                           "); a config built in code must set both"});
-  }
+  const FusionMethodKind method = c.fusion.method;
   const SuperpixelOptions& sp = c.fusion.sac.superpixels;
   if (method == FusionMethodKind::kSac && sp.block_size_px < 2 * std::max(sp.region_size_px, 1)) {
     errors->push_back({"superpixels.block_size_px", std::to_string(sp.block_size_px),
@@ -99,7 +94,7 @@ void CheckCrossKeyRules(const JobConfig& c, std::vector<OptionError>* errors) {
 // Every broken rule of `c`: the table's ranges of the keys its method reads, then the cross-key rules.
 std::vector<OptionError> JobConfigErrors(const JobConfig& c) {
   JobConfig copy = c;
-  std::vector<OptionError> errors = MakeOptionTable(&copy).Check(MethodScope(c.fusion.method_kind));
+  std::vector<OptionError> errors = MakeOptionTable(&copy).Check(MethodScope(c.fusion.method));
   CheckCrossKeyRules(c, &errors);
   return errors;
 }
@@ -122,7 +117,6 @@ JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source
   }
   std::map<std::string, int> key_lines;
   MakeOptionTable(&config).Parse(root, source_name, &key_lines);
-  config.fusion.method = NameOf(config.fusion.method_kind);
   config.input.path = ResolvePath(config.input.path, base_dir);
   config.input.cameras = ResolvePath(config.input.cameras, base_dir);
   config.output.dir = ResolvePath(config.output.dir, base_dir);

@@ -41,10 +41,8 @@ struct FusionOptions {
   // consistency | disparity_normal | tsdf | multiray: the paper's comparison methods [15] [13] [7] [35]
   //   (core/consistency_fusion.h, disparity_normal_fusion.h, tsdf_fusion.h, multiray_fusion.h); they reproject
   //   into the views fusion.max_neighbor_views / max_view_angle_deg / min_footprint_overlap choose.
-  // Parsed once into the enum (config/fusion_method_kind.h). `method` is its name, filled by ParseJobConfig for
-  // the code that still compares strings; code that builds a config sets both (ValidateJobConfig checks them).
-  FusionMethodKind method_kind = FusionMethodKind::kSac;
-  std::string method = "sac";
+  // Parsed once into the enum (config/fusion_method_kind.h); NameOf(method) is its YAML name.
+  FusionMethodKind method = FusionMethodKind::kSac;
   SacOptions sac;          // YAML: fusion.<field> and superpixels.<field>
   ConsistencyOptions consistency;          // YAML: consistency.<field>
   DisparityNormalOptions disparity_normal; // YAML: disparity_normal.<field>

@@ -22,7 +22,7 @@ TEST(JobConfigTest, MinimalConfigTakesDefaultsAndResolvesPaths) {
   EXPECT_EQ(c.output.dir, "/base/out");
   EXPECT_EQ(c.output.las_version, "1.4");
   EXPECT_DOUBLE_EQ(c.output.scale_m, 0.001);
-  EXPECT_EQ(c.fusion.method, "sac");
+  EXPECT_EQ(c.fusion.method, FusionMethodKind::kSac);
   EXPECT_EQ(c.evaluation.tau_gsd, (std::vector<double>{2.0, 5.0}));
 }
 

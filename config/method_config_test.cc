@@ -17,7 +17,7 @@ TEST(MethodConfigTest, EachMethodIsAllowedAndItsKeysReachTheOptions) {
   for (const char* method : {"sac", "union", "consistency", "disparity_normal", "tsdf", "multiray"}) {
     const JobConfig c = ParseJobConfig(std::string("input: {path: ws}\nfusion: {method: ") + method + "}\n", "job.yaml",
                                        "/base");
-    EXPECT_EQ(c.fusion.method, method);
+    EXPECT_EQ(NameOf(c.fusion.method), method);
   }
   const JobConfig c = ParseJobConfig(
       "input: {path: ws}\nfusion: {method: tsdf}\nconsistency: {depth_threshold_rel: 0.02}\n"

@@ -68,7 +68,7 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "LAS version: 1.4 (point format 7) | 1.2 (format 3)");
   s.AddDouble("output.scale_m", &c->output.scale_m, Affects("m", Closed(1e-6, 1.0)),
               "LAS coordinate quantum, metres; 10^k x {1, 0.5, 0.25}");
-  s.AddEnum("fusion.method", &c->fusion.method_kind, MethodChoices(), Affects("-", {}),
+  s.AddEnum("fusion.method", &c->fusion.method, MethodChoices(), Affects("-", {}),
             "fusion method: sac (Select-and-Combine) | union (every valid depth pixel: the 'before fusion' baseline) "
             "| the paper's comparison methods: consistency ([15]: occluded and redundant depths removed) | "
             "disparity_normal ([13]: disparity + normal consistency, averaged) | tsdf ([7]: truncated signed "

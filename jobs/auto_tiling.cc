@@ -60,7 +60,7 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
   const int threads = EffectiveThreads(config);
   const uint64_t pool = TileMemoryPoolBytes(d.budget_bytes);
   const uint64_t superpixel_bytes = SuperpixelPassBytes(pixels);
-  if (config.fusion.method == "sac" && superpixel_bytes > d.budget_bytes) {
+  if (config.fusion.method == FusionMethodKind::kSac && superpixel_bytes > d.budget_bytes) {
     spdlog::warn("the superpixel pass needs ~{:.2f} GiB for the largest view, more than resources.memory_gb = {}",
                  GiB(superpixel_bytes), config.resources.memory_gb);
   }
@@ -76,7 +76,7 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
                " GiB of the " + fmt::format("{:.2f}", GiB(d.budget_bytes)) + " GiB budget";
     return d;
   }
-  if (config.fusion.method == "sac" && config.fusion.sac.correspondence == "dense") {
+  if (config.fusion.method == FusionMethodKind::kSac && config.fusion.sac.correspondence == "dense") {
     throw ConfigError("fusion.correspondence = dense runs untiled only, but this block needs ~" +
                       fmt::format("{:.2f}", GiB(d.untiled_bytes)) + " GiB > resources.memory_gb = " +
                       fmt::format("{}", config.resources.memory_gb) +

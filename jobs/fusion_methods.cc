@@ -6,14 +6,15 @@
 namespace sacfuse {
 
 std::unique_ptr<FusionMethod> MakeFusionMethod(const FusionOptions& fusion, const SacProgress& progress) {
-  const std::string& m = fusion.method;
-  if (m == "sac") return MakeSacMethod(fusion.sac, progress);
-  if (m == "union") return MakeUnionMethod();
-  if (m == "consistency") return MakeConsistencyMethod(fusion.consistency);
-  if (m == "disparity_normal") return MakeDisparityNormalMethod(fusion.disparity_normal);
-  if (m == "multiray") return MakeMultirayMethod(fusion.multiray);
-  if (m == "tsdf") return MakeTsdfMethod(fusion.tsdf);
-  throw ConfigError("fusion.method = " + m + ": unknown method");
+  switch (fusion.method) {
+    case FusionMethodKind::kSac: return MakeSacMethod(fusion.sac, progress);
+    case FusionMethodKind::kUnion: return MakeUnionMethod();
+    case FusionMethodKind::kConsistency: return MakeConsistencyMethod(fusion.consistency);
+    case FusionMethodKind::kDisparityNormal: return MakeDisparityNormalMethod(fusion.disparity_normal);
+    case FusionMethodKind::kMultiray: return MakeMultirayMethod(fusion.multiray);
+    case FusionMethodKind::kTsdf: return MakeTsdfMethod(fusion.tsdf);
+  }
+  throw ConfigError("fusion.method = " + std::to_string(static_cast<int>(fusion.method)) + ": unknown method");
 }
 
 }  // namespace sacfuse

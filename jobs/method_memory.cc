@@ -10,7 +10,7 @@ constexpr double kTsdfVoxelBytesPerPixelAt4Gsd = 50.0;  // voxel 1 GSD, truncati
 }  // namespace
 
 uint64_t MethodExtraBytesPerDepthPixel(const FusionOptions& fusion) {
-  if (fusion.method != "tsdf") return 0;
+  if (fusion.method != FusionMethodKind::kTsdf) return 0;
   const double voxel = fusion.tsdf.voxel_size_gsd;
   const double scale = (fusion.tsdf.truncation_gsd / 4.0) / (voxel * voxel * voxel);
   return static_cast<uint64_t>(std::ceil(kTsdfVoxelBytesPerPixelAt4Gsd * scale));

@@ -150,7 +150,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
   const TilePlan plan = SharedTilePlan(config, input, identity.views);
   CheckRerunTiles(rerun_tiles, &plan);
   spdlog::info("tiled {}: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
-               config.fusion.method, plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
+               NameOf(config.fusion.method), plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
   const TiledRunOutcome tiled =
       RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path, progress);
@@ -186,7 +186,7 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
     BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &z_source);
     geometry = BlockMethodGeometry(input, sizes, z_min, z_max, NeighborOptionsOf(config.fusion.sac));
     spdlog::info("{}: block GSD {:.3f} m from the geometry (heights [{:.1f}, {:.1f}] m from {})",
-                 config.fusion.method, geometry.gsd_m, z_min, z_max, z_source);
+                 NameOf(config.fusion.method), geometry.gsd_m, z_min, z_max, z_source);
   }
   LasWriter writer(summary->las_path, MakeLasOptions(config));
   CountingSink counting(writer);
@@ -235,7 +235,7 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   RemoveTemporaryFilesOfKilledRuns(config);
 
   RunSummary summary;
-  summary.method = config.fusion.method;
+  summary.method = NameOf(config.fusion.method);
   summary.las_path = FusedLasPath(config);
   summary.effective_config_path = EffectiveConfigPath(config);
   summary.report_path = RunReportPath(config);
@@ -261,13 +261,13 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   spdlog::info("input: {} views from {}", views.size(), config.input.path);
   summary.views.resize(views.size());
   for (size_t i = 0; i < views.size(); ++i) summary.views[i].name = views[i].name;
-  if (config.fusion.method == "sac") {
+  if (config.fusion.method == FusionMethodKind::kSac) {
     spdlog::info("fusion method: sac (Select-and-Combine, unary '{}', correspondences '{}')",
                  config.fusion.sac.unary, config.fusion.sac.correspondence);
-  } else if (config.fusion.method == "union") {
+  } else if (config.fusion.method == FusionMethodKind::kUnion) {
     spdlog::info("fusion method: union (every valid depth pixel becomes a point; no fusion)");
   } else {
-    spdlog::info("fusion method: {} (comparison method; no superpixels)", config.fusion.method);
+    spdlog::info("fusion method: {} (comparison method; no superpixels)", NameOf(config.fusion.method));
   }
   if (tiled) {
     RunTiled(config, input, progress, rerun_tiles, &summary);

@@ -37,7 +37,7 @@ void MakeViewCaches(const JobConfig& config, const DepthBlock& input, const Tile
                  out->superpixel_seconds, work.todo.size(), work.tiles_with_views);
   } else {
     spdlog::info("colour caches checked ({:.1f} s; no superpixels for {}); {} of {} tiles to compute",
-                 out->superpixel_seconds, config.fusion.method, work.todo.size(), work.tiles_with_views);
+                 out->superpixel_seconds, NameOf(config.fusion.method), work.todo.size(), work.tiles_with_views);
   }
 }
 
