@@ -1,7 +1,5 @@
 #include "tools/sim/consistency_graphs.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +7,9 @@
 #include <map>
 
 #include <Eigen/Core>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/backproject.h"
 #include "core/error.h"
@@ -21,7 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-int Threads(const ConsistencyGraphOptions& o) { return o.num_threads > 0 ? o.num_threads : omp_get_max_threads(); }
+int Threads(const ConsistencyGraphOptions& o) { return o.num_threads > 0 ? o.num_threads : tbb::this_task_arena::max_concurrency(); }
 
 // Focal length standing for a camera's pixel footprint (metres per pixel = depth / this).
 double Focal(const PinholeCamera& c) { return std::min(c.fx, c.fy); }
@@ -47,8 +48,8 @@ PointBox BoxOf(const DepthViewRef& v, const ConsistencyGraphOptions& o) {
   const Rigid3d world_from_cam = v.cam_from_world.Inverse();
   std::vector<PointBox> rows(static_cast<size_t>(depth.height));
   std::vector<double> max_depth(rows.size(), 0.0);
-#pragma omp parallel for schedule(static) num_threads(Threads(o))
-  for (int row = 0; row < depth.height; ++row) {
+  tbb::task_arena(Threads(o)).execute([&] {
+  tbb::parallel_for(0, depth.height, [&](int row) {
     PointBox& box = rows[static_cast<size_t>(row)];
     for (int col = 0; col < depth.width; ++col) {
       const float d = depth.at(row, col);
@@ -59,7 +60,8 @@ PointBox BoxOf(const DepthViewRef& v, const ConsistencyGraphOptions& o) {
       box.hi = box.hi.cwiseMax(p);
       max_depth[static_cast<size_t>(row)] = std::max(max_depth[static_cast<size_t>(row)], static_cast<double>(d));
     }
-  }
+  });
+  });
   PointBox box;
   double z_max = 0.0;
   for (size_t r = 0; r < rows.size(); ++r) {
@@ -148,8 +150,8 @@ ConsistencyGraph ComputeConsistencyGraph(size_t ref, const std::vector<DepthView
   const uint32_t cap = static_cast<uint32_t>(std::max(0, o.max_views_per_pixel));
   std::vector<uint32_t> counts(static_cast<size_t>(width) * height, 0);
   std::vector<std::vector<uint32_t>> row_lists(static_cast<size_t>(height));
-#pragma omp parallel for schedule(dynamic, 4) num_threads(Threads(o))
-  for (int row = 0; row < height; ++row) {
+  tbb::task_arena(Threads(o)).execute([&] {
+  tbb::parallel_for(0, height, [&](int row) {
     std::vector<uint32_t>& list = row_lists[static_cast<size_t>(row)];
     std::vector<Eigen::Vector3d> a(src.size()), b(src.size());
     for (size_t s = 0; s < src.size(); ++s) {
@@ -176,7 +178,8 @@ ConsistencyGraph ComputeConsistencyGraph(size_t ref, const std::vector<DepthView
       }
       counts[static_cast<size_t>(row) * width + col] = n;
     }
-  }
+  });
+  });
   ConsistencyGraph graph;
   graph.width = width;
   graph.height = height;

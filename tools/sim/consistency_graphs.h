@@ -29,7 +29,7 @@ struct ConsistencyGraphOptions {
   double gsd_factor = 2.0;           // ... or this many local GSDs, whichever is larger
   int max_source_views = 20;         // source views per reference view
   int max_views_per_pixel = 20;      // cap of a pixel's list
-  int num_threads = 0;               // OpenMP threads over rows, 0 = OpenMP's default; the output does not depend on it
+  int num_threads = 0;               // TBB threads over rows, 0 = all allowed; the output does not depend on it
 };
 
 struct ConsistencyGraphSummary {

@@ -1,11 +1,14 @@
 #include "tools/sim/depth_errors.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
+
+#include <tbb/parallel_for.h>
 
 #include "tools/sim/sim_random.h"
 
@@ -24,8 +27,7 @@ int ScalePixels(double image_px, int downsample) {
 cv::Mat EdgeForeground(const DepthMap& depth, float step) {
   cv::Mat m(depth.height, depth.width, CV_32F, cv::Scalar(kFar));
   const int w = depth.width, h = depth.height;
-#pragma omp parallel for schedule(static)
-  for (int row = 0; row < h; ++row) {
+  tbb::parallel_for(0, h, [&](int row) {
     float* out = m.ptr<float>(row);
     for (int col = 0; col < w; ++col) {
       const float d = depth.at(row, col);
@@ -41,7 +43,7 @@ cv::Mat EdgeForeground(const DepthMap& depth, float step) {
         }
       }
     }
-  }
+  });
   return m;
 }
 
@@ -101,9 +103,8 @@ DepthMap ApplyDepthErrors(const DepthMap& true_depth, const ViewErrorModel& m, u
       const cv::Size size = m.baseline_along_columns ? cv::Size(len, 1) : cv::Size(1, len);
       cv::erode(fg, occ_min, cv::getStructuringElement(cv::MORPH_RECT, size));
     }
-    size_t fattened = 0, occluded = 0;
-#pragma omp parallel for schedule(static) reduction(+ : fattened, occluded)
-    for (int row = 0; row < h; ++row) {
+    std::atomic<size_t> fattened{0}, occluded{0};  // pixel counts, any order
+    tbb::parallel_for(0, h, [&](int row) {
       for (int col = 0; col < w; ++col) {
         const float t = true_depth.at(row, col);
         if (!IsValidDepth(t)) continue;
@@ -120,7 +121,7 @@ DepthMap ApplyDepthErrors(const DepthMap& true_depth, const ViewErrorModel& m, u
           ++occluded;
         }
       }
-    }
+    });
     rep.fattened_pixels = fattened;
     rep.occluded_pixels = occluded;
   }
@@ -144,8 +145,7 @@ DepthMap ApplyDepthErrors(const DepthMap& true_depth, const ViewErrorModel& m, u
         cos_v[k * h + row] = std::cos(b), sin_v[k * h + row] = std::sin(b);
       }
     }
-#pragma omp parallel for schedule(static)
-    for (int row = 0; row < h; ++row) {
+    tbb::parallel_for(0, h, [&](int row) {
       for (int col = 0; col < w; ++col) {
         float& v = d.at(row, col);
         if (v <= 0.0f) continue;
@@ -158,7 +158,7 @@ DepthMap ApplyDepthErrors(const DepthMap& true_depth, const ViewErrorModel& m, u
         z += m.bias_amplitude_m * bias;
         v = z > 1e-3 ? static_cast<float>(z) : 0.0f;
       }
-    }
+    });
   }
 
   // Blunder blobs.
@@ -193,9 +193,8 @@ DepthMap ApplyDepthErrors(const DepthMap& true_depth, const ViewErrorModel& m, u
   if (m.dropout_fraction > 0.0) {
     const std::vector<float> field = CorrelatedGaussianField(w, h, 1.5, HashCombine(key, 4));
     const auto threshold = static_cast<float>(InverseNormalCdf(1.0 - m.dropout_fraction));
-    size_t dropped = 0;
-#pragma omp parallel for schedule(static) reduction(+ : dropped)
-    for (int row = 0; row < h; ++row) {
+    std::atomic<size_t> dropped{0};
+    tbb::parallel_for(0, h, [&](int row) {
       for (int col = 0; col < w; ++col) {
         float& v = d.at(row, col);
         if (v > 0.0f && field[static_cast<size_t>(row) * w + col] > threshold) {
@@ -203,7 +202,7 @@ DepthMap ApplyDepthErrors(const DepthMap& true_depth, const ViewErrorModel& m, u
           ++dropped;
         }
       }
-    }
+    });
     rep.dropout_pixels = dropped;
   }
   rep.valid_out = static_cast<size_t>(std::count_if(d.data.begin(), d.data.end(), [](float v) { return v > 0.0f; }));

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 
 namespace sacfuse::sim {
 
@@ -13,8 +15,7 @@ NormalMap NormalsFromDepth(const DepthMap& depth, const PinholeCamera& cam) {
   const int w = depth.width, h = depth.height;
   NormalMap normals(w, h, 3, 0.0f);
   const double focal = std::min(cam.fx, cam.fy);
-#pragma omp parallel for schedule(dynamic, 16)
-  for (int row = 0; row < h; ++row) {
+  tbb::parallel_for(0, h, [&](int row) {
     for (int col = 0; col < w; ++col) {
       const float d0 = depth.at(row, col);
       if (!IsValidDepth(d0)) continue;
@@ -45,7 +46,7 @@ NormalMap NormalsFromDepth(const DepthMap& depth, const PinholeCamera& cam) {
       if (facing < 0.05) normal = (normal + (0.05 - facing) * to_camera).normalized();
       for (int k = 0; k < 3; ++k) normals.at(row, col, k) = static_cast<float>(normal[k]);
     }
-  }
+  });
   return normals;
 }
 

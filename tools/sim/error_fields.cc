@@ -5,19 +5,20 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <tbb/parallel_for.h>
+
 #include "tools/sim/sim_random.h"
 
 namespace sacfuse::sim {
 
 std::vector<float> CorrelatedGaussianField(int width, int height, double sigma_px, uint64_t key) {
   std::vector<float> field(static_cast<size_t>(width) * height);
-#pragma omp parallel for schedule(static)
-  for (int row = 0; row < height; ++row) {
+  tbb::parallel_for(0, height, [&](int row) {
     for (int col = 0; col < width; ++col) {
       const size_t i = static_cast<size_t>(row) * width + col;
       field[i] = static_cast<float>(HashToNormal(HashCombine(key, i)));
     }
-  }
+  });
   if (sigma_px < 0.3 || width < 2 || height < 2) return field;
   const int ksize = 2 * static_cast<int>(std::ceil(3.0 * sigma_px)) + 1;
   const cv::Mat kernel = cv::getGaussianKernel(ksize, sigma_px, CV_64F);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "io/las_reader.h"
 #include "io/las_writer.h"
 #include "tools/sim/sim_random.h"
@@ -37,8 +39,7 @@ uint64_t WriteSampledReference(const Surface& surface, const Box2d& area, double
     const int row1 = std::min(ny, row0 + rows_per_chunk);
     chunk.assign(static_cast<size_t>(row1 - row0) * nx, LasPoint());
     ok.assign(chunk.size(), 0);
-#pragma omp parallel for schedule(dynamic, 4)
-    for (int row = row0; row < row1; ++row) {
+    tbb::parallel_for(row0, row1, [&](int row) {
       for (int col = 0; col < nx; ++col) {
         const size_t i = static_cast<size_t>(row - row0) * nx + col;
         const uint64_t h = Hash3(key, static_cast<uint64_t>(row), static_cast<uint64_t>(col));
@@ -55,7 +56,7 @@ uint64_t WriteSampledReference(const Surface& surface, const Box2d& area, double
             std::clamp(0.3f * albedo[0] + 0.59f * albedo[1] + 0.11f * albedo[2], 0.0f, 1.0f) * 65535.0f);
         ok[i] = 1;
       }
-    }
+    });
     size_t n = 0;
     for (size_t i = 0; i < chunk.size(); ++i) {
       if (ok[i]) chunk[n++] = chunk[i];

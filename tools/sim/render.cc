@@ -8,6 +8,8 @@
 #include <limits>
 #include <vector>
 
+#include <tbb/parallel_for.h>
+
 #include "core/backproject.h"
 #include "core/error.h"
 
@@ -222,8 +224,7 @@ RenderedView RenderView(const RenderRequest& req) {
   }
 
   std::atomic<size_t> triangles{0};
-#pragma omp parallel for schedule(dynamic, 4)
-  for (size_t t = 0; t < tiles.size(); ++t) {
+  tbb::parallel_for(size_t{0}, size_t{tiles.size()}, [&](size_t t) {
     const Tile& tile = tiles[t];
     const double s = tile.spacing;
     const auto ix0 = static_cast<int64_t>(std::floor(tile.box.min.x() / s)) - 1;
@@ -270,25 +271,23 @@ RenderedView RenderView(const RenderRequest& req) {
       }
     }
     triangles += count;
-  }
+  });
   out.tiles = tiles.size();
   out.triangles = triangles.load();
 
   const ZTarget& dz = separate_depth ? depth_z : image_z;
   out.depth = DepthMap(depth_w, depth_h, 1, 0.0f);
-#pragma omp parallel for schedule(static)
-  for (int row = 0; row < depth_h; ++row) {
+  tbb::parallel_for(0, depth_h, [&](int row) {
     for (int col = 0; col < depth_w; ++col) {
       const uint64_t key = dz.keys[static_cast<size_t>(row) * depth_w + col];
       out.depth.at(row, col) = key == kEmpty ? 0.0f : KeyDepth(key);
     }
-  }
+  });
   if (separate_depth) std::vector<uint64_t>().swap(depth_z.keys);
   if (!req.render_image) return out;
 
   out.image = RgbImage(cam.width, cam.height, 3, 0);
-#pragma omp parallel for schedule(dynamic, 8)
-  for (int row = 0; row < cam.height; ++row) {
+  tbb::parallel_for(0, cam.height, [&](int row) {
     for (int col = 0; col < cam.width; ++col) {
       const uint64_t key = image_z.keys[static_cast<size_t>(row) * cam.width + col];
       if (key == kEmpty) continue;
@@ -300,7 +299,7 @@ RenderedView RenderView(const RenderRequest& req) {
         out.image.at(row, col, c) = static_cast<uint8_t>(std::clamp(std::lround(rgb[c]), 0L, 255L));
       }
     }
-  }
+  });
   return out;
 }
 

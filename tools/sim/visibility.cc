@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+
 namespace sacfuse::sim {
 
 bool SeesPoint(const DepthMap& depth, const PinholeCamera& cam, const Rigid3d& cam_from_world,
@@ -40,27 +42,25 @@ CoverageCounter::CoverageCounter(const Surface& surface, const Box2d& area, doub
   heights_.resize(n);
   counts_.assign(n, 0);
   base_z_ = surface.GlobalRange().IsEmpty() ? 0.0 : surface.GlobalRange().lo;
-#pragma omp parallel for schedule(dynamic, 16)
-  for (int row = 0; row < height_; ++row) {
+  tbb::parallel_for(0, height_, [&](int row) {
     for (int col = 0; col < width_; ++col) {
       const double x = area_.min.x() + (col + 0.5) * cell_, y = area_.max.y() - (row + 0.5) * cell_;
       const double z = surface.Height(x, y);
       heights_[static_cast<size_t>(row) * width_ + col] =
           std::isfinite(z) ? static_cast<float>(z - base_z_) : std::numeric_limits<float>::quiet_NaN();
     }
-  }
+  });
 }
 
 void CoverageCounter::AddView(const DepthMap& depth, const PinholeCamera& cam, const Rigid3d& cam_from_world) {
-#pragma omp parallel for schedule(dynamic, 16)
-  for (int row = 0; row < height_; ++row) {
+  tbb::parallel_for(0, height_, [&](int row) {
     for (int col = 0; col < width_; ++col) {
       const size_t i = static_cast<size_t>(row) * width_ + col;
       if (std::isnan(heights_[i]) || counts_[i] == 255) continue;
       const Eigen::Vector3d p(area_.min.x() + (col + 0.5) * cell_, area_.max.y() - (row + 0.5) * cell_, base_z_ + heights_[i]);
       if (SeesPoint(depth, cam, cam_from_world, p)) ++counts_[i];
     }
-  }
+  });
 }
 
 GeoMask CoverageCounter::Mask(int min_views) const {
