@@ -3,7 +3,7 @@
 #   tools/sanitize.sh asan [CTEST_REGEX]   ASan + UBSan (build-asan/): the whole suite, or the tests matching the
 #                                          regex (e.g. 'config|io|tiling')
 #   tools/sanitize.sh tsan [CTEST_REGEX]   TSan (build-tsan/): the tiled and threaded tests, by default
-#                                          'tiling|tiles/|queue|resume|run_state|laz_writer'
+#                                          'tiling/|tiles/'
 # A sanitizer report aborts the test (no recovery), so any finding fails CTest. A full ASan build takes ~15-20
 # CPU minutes; the suite runs 2-5x slower than in Release. SACFUSE_SANITIZE_JOBS sets the build parallelism.
 set -euo pipefail
@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 kind=${1:?usage: tools/sanitize.sh asan|tsan [CTEST_REGEX]}
 case "$kind" in
   asan) sanitize=address,undefined dir=build-asan regex=${2:-} ;;
-  tsan) sanitize=thread dir=build-tsan regex=${2:-'tiling|tiles/|queue|resume|run_state|laz_writer'} ;;
+  tsan) sanitize=thread dir=build-tsan regex=${2:-'tiling/|tiles/'} ;;
   *) echo "sanitize: unknown kind $kind (asan or tsan)" >&2; exit 2 ;;
 esac
 launcher=()
