@@ -23,11 +23,12 @@ TEST(ReportHistogramTest, SortsByAfterCountThenViewIndex) {
 }
 
 TEST(ReportHistogramTest, BarHeightsAreProportionalToCounts) {
-  const HistogramLayout l = LayoutHistogram(Counts(), 600, 200);
+  const std::vector<ViewCounts> counts = Counts();  // kept: a reference into a temporary dangles (found by ASan)
+  const HistogramLayout l = LayoutHistogram(counts, 600, 200);
   ASSERT_EQ(l.bars.size(), 4u);
   EXPECT_GE(l.max_count, 2000.0);  // the axis holds the largest count
   for (const HistogramBar& b : l.bars) {
-    const ViewCounts& c = Counts()[b.view];
+    const ViewCounts& c = counts[b.view];
     EXPECT_NEAR(b.before_height, c.before / l.max_count * 200.0, 1e-9);
     EXPECT_NEAR(b.after_height, c.after / l.max_count * 200.0, 1e-9);
     EXPECT_LE(b.before_height, 200.0);
