@@ -11,6 +11,9 @@
 namespace sacfuse {
 namespace {
 
+constexpr int kPatchRows = 16;  // pixels judged together (see JudgePoints)
+constexpr int kPatchCols = 32;
+
 // `hits[k]`: the point looked up in neighbors[k].
 bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, const std::vector<uint32_t>& neighbors,
                        const DepthLookup* hits, const std::vector<double>& noise_factor, const SacOptions& options) {
@@ -84,21 +87,31 @@ PointVerdicts JudgePoints(const std::vector<SacView>& views, const std::vector<s
     const std::vector<uint32_t>& near = neighbors[v];
     std::vector<int> neighbor_slot(views.size(), -1);
     for (size_t k = 0; k < near.size(); ++k) neighbor_slot[near[k]] = static_cast<int>(k);
-    tbb::parallel_for(0, depth.height, [&](int row) {
+    // Cache-friendly order: the points of a patch of kPatchRows x kPatchCols pixels land in compact patches of the
+    // other views' depth maps, which stay in cache while the patch is judged. (Row by row, an oblique neighbour
+    // whose rows run across this view's rows was read one cache line per pixel: the reads of LookupDepth's depth
+    // value were ~78 % of its time.) Each verdict depends on its pixel only, so the order changes nothing else.
+    const int patch_rows = (depth.height + kPatchRows - 1) / kPatchRows;
+    const int patch_cols = (depth.width + kPatchCols - 1) / kPatchCols;
+    tbb::parallel_for(0, patch_rows * patch_cols, [&](int patch) {
       std::vector<DepthLookup> hits(near.size());
-      for (int col = 0; col < depth.width; ++col) {
-        const float d = depth.at(row, col);
-        if (!IsValidDepth(d)) continue;
-        const Eigen::Vector3d point = PixelPoint(view, row, col, d);
-        for (size_t k = 0; k < near.size(); ++k) hits[k] = LookupDepth(views[near[k]], point);
-        PointVerdict verdict = PointVerdict::kPasses;
-        if (!PassesOutlierTest(views, v, d, near, hits.data(), noise_factor, options)) {
-          verdict = PointVerdict::kOutlier;
-        } else if (options.free_space_min_views > 0 &&
-                   InFreeSpace(views, v, point, d, judges[v], neighbor_slot, hits.data(), noise_factor, options)) {
-          verdict = PointVerdict::kFreeSpace;
+      const int row0 = (patch / patch_cols) * kPatchRows, col0 = (patch % patch_cols) * kPatchCols;
+      const int row_end = std::min(depth.height, row0 + kPatchRows), col_end = std::min(depth.width, col0 + kPatchCols);
+      for (int row = row0; row < row_end; ++row) {
+        for (int col = col0; col < col_end; ++col) {
+          const float d = depth.at(row, col);
+          if (!IsValidDepth(d)) continue;
+          const Eigen::Vector3d point = PixelPoint(view, row, col, d);
+          for (size_t k = 0; k < near.size(); ++k) hits[k] = LookupDepth(views[near[k]], point);
+          PointVerdict verdict = PointVerdict::kPasses;
+          if (!PassesOutlierTest(views, v, d, near, hits.data(), noise_factor, options)) {
+            verdict = PointVerdict::kOutlier;
+          } else if (options.free_space_min_views > 0 &&
+                     InFreeSpace(views, v, point, d, judges[v], neighbor_slot, hits.data(), noise_factor, options)) {
+            verdict = PointVerdict::kFreeSpace;
+          }
+          verdicts[static_cast<size_t>(row) * depth.width + col] = verdict;
         }
-        verdicts[static_cast<size_t>(row) * depth.width + col] = verdict;
       }
     });
   }
