@@ -6,6 +6,20 @@
 
 namespace sacfuse::testing {
 
+// Whether this build carries a sanitizer (tools/sanitize.sh, tools/fuzz.sh): their shadow memory counts in a
+// process's RSS (TSan ~5-10x), so tests of a memory budget skip their RSS bound there.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr bool kSanitizedBuild = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+inline constexpr bool kSanitizedBuild = true;
+#else
+inline constexpr bool kSanitizedBuild = false;
+#endif
+#else
+inline constexpr bool kSanitizedBuild = false;
+#endif
+
 // A fresh empty directory under the system temp dir, removed when the object dies
 // (kept when SACFUSE_KEEP_TEST_DIRS is set, for debugging).
 class TempDir {
