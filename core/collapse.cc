@@ -47,6 +47,9 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   DepthCombineOptions combine_options;
   combine_options.gate_gsd = options.combine_gate_gsd;
   combine_options.gate_sigmas = options.combine_gate_sigmas;
+  combine_options.weights = options.combine_weights == "equal"   ? CombineWeights::kEqual
+                           : options.combine_weights == "noise" ? CombineWeights::kNoise
+                                                                : CombineWeights::kView;
   // The views that judge redundancy: the combine views (up to 40), else the neighbour views.
   const std::vector<uint32_t>& judges = combine_views[v].empty() ? neighbors[v] : combine_views[v];
   const bool best_view = options.collapse == "best_view";

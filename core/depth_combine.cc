@@ -79,14 +79,26 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * depth_m);
   const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (depth_m + step_m));
 
-  double weight_sum = 1.0 / (own_sigma * own_sigma);
+  // The weight of depth map i whose depth on the ray has the model sigma `sigma_m` (options.weights).
+  auto weight = [&](uint32_t i, double sigma_m) {
+    switch (options.weights) {
+      case CombineWeights::kEqual:
+        return 1.0;
+      case CombineWeights::kView:
+        return 1.0 / (factor(i) * factor(i));
+      case CombineWeights::kNoise:
+        break;
+    }
+    return 1.0 / (sigma_m * sigma_m);
+  };
+  double weight_sum = weight(v, own_sigma);
   double weighted_depth = weight_sum * depth_m;
   CombinedDepth out;
   for (const uint32_t nb : neighbors) {
     RayHit hit;
     if (!IntersectRay(views[nb], at_d, at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
     const double sigma = factor(nb) * DepthNoiseScale(views[nb], hit.z_b_m) / std::abs(hit.slope);
-    const double w = 1.0 / (sigma * sigma);
+    const double w = weight(nb, sigma);
     weight_sum += w;
     weighted_depth += w * hit.depth_m;
     ++out.support;

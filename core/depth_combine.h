@@ -11,6 +11,14 @@
 //    per-view factor k (baseline, matcher quality, oblique or not) that core/view_noise.h estimates from the
 //    data; an error e of D_b moves t_b by e / |f'|. So w_b = f'^2 / (k_b z_b gsd_b(z_b))^2 and
 //    w_v = 1 / (k_v d gsd_v(d))^2.
+//  * Weights actually used (SacOptions::combine_weights, default "view"): 1 / k_i^2 only. Measured on aerial-bench,
+//    F1 at 2x GSD, full model -> k only (-> equal): Montpellier 0.9752 -> 0.9760 (0.9758), Montpellier errors x2.5
+//    0.9139 -> 0.9292 (0.9301), Zurich 0.9655 -> 0.9659 (0.9657), Zurich x2.5 0.8794 -> 0.8961 (0.8997); the slope
+//    alone as weight 0.9077 and z^2/f with the slope but without k 0.9145 (Montpellier x2.5). The full model leans
+//    on the own (selected, most precise) depth and on steep intersections, but these blocks' errors are largely
+//    per view (pose, smooth bias), which z^2/f does not describe, and the slope is a finite difference of noisy
+//    depths. k stays: it is measured from the residuals, so a biased or noisy depth map counts less (equal
+//    weights let a view biased by 3.6 GSD pull its neighbours' points; core/sac_fusion_test.cc).
 //  * Robustness: only neighbours whose t_b lies within the gate of d take part (the others see another surface,
 //    an occluder or a blunder): `gate_gsd` local GSDs, widened to `gate_sigmas` sigma of v's own depth (k_v d gsd_v(d)) where
 //    the estimated noise is larger. Grazing intersections (|f'| < 0.2) are skipped.
@@ -30,10 +38,18 @@
 
 namespace sacfuse {
 
+// How the depth maps that take part are weighted (see the header).
+enum class CombineWeights {
+  kView,   // 1 / k_i^2: the per-view noise factor only (1 for all without noise factors)
+  kEqual,  // 1 for every depth map
+  kNoise,  // the stereo model: w_v and w_b above
+};
+
 struct DepthCombineOptions {
   double gate_gsd = 12.0;     // neighbours farther than this many local GSDs along the ray are ignored ...
   double gate_sigmas = 3.0;   // ... unless within this many sigmas of the own depth (with noise factors)
   double min_slope = 0.2;     // |f'| below this (grazing ray-surface intersection) is ignored
+  CombineWeights weights = CombineWeights::kView;
 };
 
 // Depth of `depth` at image coordinates (u, v) (corner convention), bilinear over the 2x2 pixel centres around

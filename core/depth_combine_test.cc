@@ -89,7 +89,7 @@ struct FourViews {
   }
 };
 
-TEST(CombineDepthTest, AveragesAgreeingViewsWeightedByNoiseAndGatesOutOthers) {
+TEST(CombineDepthTest, AveragesAgreeingViewsEquallyOrByNoiseAndGatesOutOthers) {
   // View 0 exact; 1: +0.3 m; 2: -0.3 m; 3: a 5 m blunder (beyond 12 GSDs = 2 m).
   FourViews s({0.0, 0.3, -0.3, 5.0});
   const int row = 45, col = 60;
@@ -100,9 +100,19 @@ TEST(CombineDepthTest, AveragesAgreeingViewsWeightedByNoiseAndGatesOutOthers) {
   CombinedDepth c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {1, 2, 3}, {}, options);
   EXPECT_EQ(c.support, 3);
   EXPECT_NEAR(c.depth_m, d, 1e-4);  // (0 + 0.3 - 0.3) / 3
-  // Absolute noise factors: sigma 0.1 m for views 0, 1 and 3, view 2 three times noisier (weight 1/9):
+  // Absolute noise factors: sigma 0.1 m for views 0, 1 and 3, view 2 three times noisier. Equal weights: still
+  // (0 + 0.3 - 0.3) / 3. View weights, and here (equal depths, slope 1) also the noise model: view 2 weighs 1/9,
   // (0 + 0.3 - 0.3 / 9) / (2 + 1 / 9). The gate stays 12 GSDs (3 sigma is less), so the blunder stays out.
   const double k = 0.1 / DepthNoiseScale(s.views[0], d);
+  options.weights = CombineWeights::kEqual;
+  c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {1, 2, 3}, {k, k, 3 * k, k}, options);
+  EXPECT_EQ(c.support, 3);
+  EXPECT_NEAR(c.depth_m, d, 1e-4);
+  options.weights = CombineWeights::kNoise;
+  c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {1, 2, 3}, {k, k, 3 * k, k}, options);
+  EXPECT_EQ(c.support, 3);
+  EXPECT_NEAR(c.depth_m - d, (0.3 - 0.3 / 9) / (2 + 1.0 / 9), 1e-4);
+  options.weights = CombineWeights::kView;
   c = CombineDepth(s.views, 0, col + 0.5, row + 0.5, d, {1, 2, 3}, {k, k, 3 * k, k}, options);
   EXPECT_EQ(c.support, 3);
   EXPECT_NEAR(c.depth_m - d, (0.3 - 0.3 / 9) / (2 + 1.0 / 9), 1e-4);

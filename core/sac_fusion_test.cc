@@ -80,7 +80,7 @@ TEST(SacFusionTest, TwoViewsQualityUnarySelectsTheFinerViewAndKeepsCoverage) {
 
 // Three equal views; view 1's depth map is biased by +0.6 m. Views 0 and 2 agree with each other, view 1 with
 // nobody: the Netlets must select a consistent view, so no point of the biased surface survives where the others
-// see, although SAC never averages (every point comes from exactly one depth map).
+// see. (The averaging combine weighs view 1 by its estimated noise factor, which its bias makes large.)
 TEST(SacFusionTest, ThreeViewsBiasedViewIsNotSelected) {
   SyntheticBlock block;
   for (int i = 0; i < 3; ++i) {

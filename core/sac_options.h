@@ -69,6 +69,10 @@ struct SacOptions {
   std::string combine = "average";
   double combine_gate_gsd = 4.0;        // average: depth maps within this many local GSDs along the ray take part,
   double combine_gate_sigmas = 3.0;     // or within this many sigmas of the estimated noise of the own depth
+  // average: how the agreeing depth maps are weighted (core/depth_combine.h): "view" (1 / k_v^2, the per-view noise
+  // factor estimated from the data, so an inconsistent depth map counts less), "equal", or "noise" (the full
+  // stereo model: 1 / (k_v z^2 / f)^2 times the ray intersection's slope squared).
+  std::string combine_weights = "view";
   int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
   // --- Superpixels (nodes).
