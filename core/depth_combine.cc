@@ -79,8 +79,9 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * depth_m);
   const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (depth_m + step_m));
 
-  // The weight of depth map i whose depth on the ray has the model sigma `sigma_m` (options.weights).
-  auto weight = [&](uint32_t i, double sigma_m) {
+  // The weight of depth map i whose z-depth at the point is z_m and whose intersection with the ray has slope
+  // `slope` (1 for the own depth): options.weights. The noise model is evaluated only when it is the rule.
+  auto weight = [&](uint32_t i, double z_m, double slope) {
     switch (options.weights) {
       case CombineWeights::kEqual:
         return 1.0;
@@ -89,16 +90,16 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
       case CombineWeights::kNoise:
         break;
     }
+    const double sigma_m = factor(i) * DepthNoiseScale(views[i], z_m) / slope;
     return 1.0 / (sigma_m * sigma_m);
   };
-  double weight_sum = weight(v, own_sigma);
+  double weight_sum = weight(v, depth_m, 1.0);
   double weighted_depth = weight_sum * depth_m;
   CombinedDepth out;
   for (const uint32_t nb : neighbors) {
     RayHit hit;
     if (!IntersectRay(views[nb], at_d, at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
-    const double sigma = factor(nb) * DepthNoiseScale(views[nb], hit.z_b_m) / std::abs(hit.slope);
-    const double w = weight(nb, sigma);
+    const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
     weight_sum += w;
     weighted_depth += w * hit.depth_m;
     ++out.support;
