@@ -71,16 +71,9 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         }
         ++stats.input_pixels;
 
-        // The pixel's own verdict first: a dropped point needs no coverage chain.
-        const PointVerdict verdict = verdicts.At(v, depth, row, col);
-        if (verdict == PointVerdict::kOutlier) {
-          ++stats.outliers;
-          continue;
-        }
-        if (verdict == PointVerdict::kFreeSpace) {
-          ++stats.free_space;
-          continue;
-        }
+        // Whether another view emits this surface, before the pixel's own verdict: most pixels are dropped here,
+        // and their own tests (core/point_verdicts.h) are then never judged. Emitted: own verdict passes, not
+        // covered, not redundant, whatever the order; only which counter a dropped pixel lands in depends on it.
         const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
         if (label != v) {
           // Follow the choices: the chosen view's cluster there may itself have chosen another view.
@@ -91,7 +84,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
             const DepthLookup hit = LookupDepth(tv, point);
             if (!CoverageAgrees(views, v, d, target, hit, noise_factor, options)) break;
             // The target's pixel must itself be emitted (not an outlier, not in free space).
-            if (verdicts.At(target, *tv.depth, hit.row, hit.col) != PointVerdict::kPasses) break;
+            if (verdicts.At(target, hit.row, hit.col) != PointVerdict::kPasses) break;
             const uint32_t next =
                 chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
             if (next == target) {
@@ -109,6 +102,15 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         if (best_view && BetterViewEmits(views, v, point, d, judges, noise_factor, nodes, chosen_view, verdicts,
                                          options)) {
           ++stats.redundant;
+          continue;
+        }
+        const PointVerdict verdict = verdicts.At(v, row, col);
+        if (verdict == PointVerdict::kOutlier) {
+          ++stats.outliers;
+          continue;
+        }
+        if (verdict == PointVerdict::kFreeSpace) {
+          ++stats.free_space;
           continue;
         }
         FusedPoint p;

@@ -7,9 +7,9 @@
 // the tolerance, or — with estimated noise — within coverage_tolerance_sigmas sigma of the two depths' difference), and
 // the cluster there chose L itself — or chose L2, and the same holds in L2 (up to 4 hops, never back to a).
 // Otherwise the pixel is emitted from its own view. So no surface patch observed consistently is lost.
-// The pixel's own verdict comes first (core/point_verdicts.h): outliers and points in free space are dropped without
-// following any chain. The target's pixel must also pass those tests, so no pixel is dropped in favour of an
-// outlier. With `collapse: best_view` so are pixels a more precise view emits (core/redundancy.h).
+// With `collapse: best_view` so are pixels a more precise view emits (core/redundancy.h). A pixel that is not dropped
+// in favour of another view is emitted when it passes its own outlier and free-space tests (core/point_verdicts.h);
+// the other view's pixel must pass them too, so no pixel is dropped in favour of an outlier.
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -25,9 +25,10 @@ namespace sacfuse {
 struct CollapseStats {
   uint64_t input_pixels = 0;      // valid depth pixels (that the owner accepts)
   uint64_t collapsed = 0;         // dropped: covered by the view their cluster chose
-  uint64_t kept_uncovered = 0;    // their cluster chose another view, which does not emit them: kept (coverage)
+  uint64_t kept_uncovered = 0;    // their cluster chose another view, which does not emit them: not collapsed
   uint64_t redundant = 0;         // dropped: a more precise view holds the same surface (collapse: best_view)
-  uint64_t free_space = 0;        // dropped: more views observed its place as empty than agree with it
+  // Of the pixels neither collapsed nor redundant (their own tests are judged last, core/point_verdicts.h):
+  uint64_t free_space = 0;        // dropped: views observed its place as empty
   uint64_t outliers = 0;          // dropped: too few consistent views
   uint64_t emitted = 0;
   uint64_t not_owned = 0;         // valid pixels the owner rejected (another tile's), not counted above

@@ -1,9 +1,11 @@
 #include "core/point_verdicts.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-
-#include <tbb/parallel_for.h>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "core/method_views.h"
 #include "core/sac_tolerance.h"
@@ -11,8 +13,7 @@
 namespace sacfuse {
 namespace {
 
-constexpr int kPatchRows = 16;  // pixels judged together (see JudgePoints)
-constexpr int kPatchCols = 32;
+constexpr size_t kMaxJudgingViews = 64;  // SacOptions.max_neighbor_views is at most 64
 
 // `hits[k]`: the point looked up in neighbors[k].
 bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, const std::vector<uint32_t>& neighbors,
@@ -73,49 +74,53 @@ bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, const Eigen::Vec
 
 }  // namespace
 
-PointVerdicts JudgePoints(const std::vector<SacView>& views, const std::vector<std::vector<uint32_t>>& neighbors,
-                          const std::vector<std::vector<uint32_t>>& judges, const std::vector<double>& noise_factor,
-                          const SacOptions& options) {
-  PointVerdicts out;
-  out.per_view.resize(views.size());
+PointVerdicts::PointVerdicts(const std::vector<SacView>& views, std::vector<std::vector<uint32_t>> neighbors,
+                             std::vector<std::vector<uint32_t>> judges, std::vector<double> noise_factor,
+                             const SacOptions& options)
+    : views_(views),
+      neighbors_(std::move(neighbors)),
+      judges_(std::move(judges)),
+      noise_factor_(std::move(noise_factor)),
+      options_(options) {
+  neighbor_slot_.assign(views.size(), std::vector<int>(views.size(), -1));
+  memo_.resize(views.size());
   for (uint32_t v = 0; v < views.size(); ++v) {
-    const SacView& view = views[v];
-    const DepthMap& depth = *view.depth;
-    auto& verdicts = out.per_view[v];
-    verdicts.assign(static_cast<size_t>(depth.width) * depth.height, PointVerdict::kInvalid);
-    // Each point is looked up once in each neighbour; the free-space test reuses those lookups.
-    const std::vector<uint32_t>& near = neighbors[v];
-    std::vector<int> neighbor_slot(views.size(), -1);
-    for (size_t k = 0; k < near.size(); ++k) neighbor_slot[near[k]] = static_cast<int>(k);
-    // Cache-friendly order: the points of a patch of kPatchRows x kPatchCols pixels land in compact patches of the
-    // other views' depth maps, which stay in cache while the patch is judged. (Row by row, an oblique neighbour
-    // whose rows run across this view's rows was read one cache line per pixel: the reads of LookupDepth's depth
-    // value were ~78 % of its time.) Each verdict depends on its pixel only, so the order changes nothing else.
-    const int patch_rows = (depth.height + kPatchRows - 1) / kPatchRows;
-    const int patch_cols = (depth.width + kPatchCols - 1) / kPatchCols;
-    tbb::parallel_for(0, patch_rows * patch_cols, [&](int patch) {
-      std::vector<DepthLookup> hits(near.size());
-      const int row0 = (patch / patch_cols) * kPatchRows, col0 = (patch % patch_cols) * kPatchCols;
-      const int row_end = std::min(depth.height, row0 + kPatchRows), col_end = std::min(depth.width, col0 + kPatchCols);
-      for (int row = row0; row < row_end; ++row) {
-        for (int col = col0; col < col_end; ++col) {
-          const float d = depth.at(row, col);
-          if (!IsValidDepth(d)) continue;
-          const Eigen::Vector3d point = PixelPoint(view, row, col, d);
-          for (size_t k = 0; k < near.size(); ++k) hits[k] = LookupDepth(views[near[k]], point);
-          PointVerdict verdict = PointVerdict::kPasses;
-          if (!PassesOutlierTest(views, v, d, near, hits.data(), noise_factor, options)) {
-            verdict = PointVerdict::kOutlier;
-          } else if (options.free_space_min_views > 0 &&
-                     InFreeSpace(views, v, point, d, judges[v], neighbor_slot, hits.data(), noise_factor, options)) {
-            verdict = PointVerdict::kFreeSpace;
-          }
-          verdicts[static_cast<size_t>(row) * depth.width + col] = verdict;
-        }
-      }
-    });
+    if (neighbors_[v].size() > kMaxJudgingViews) {
+      throw std::invalid_argument("PointVerdicts: view " + std::to_string(v) + " has " +
+                                  std::to_string(neighbors_[v].size()) + " neighbour views, at most " +
+                                  std::to_string(kMaxJudgingViews) + " are supported");
+    }
+    for (size_t k = 0; k < neighbors_[v].size(); ++k) neighbor_slot_[v][neighbors_[v][k]] = static_cast<int>(k);
+    // Value-initialised: every pixel starts "not judged" (0).
+    memo_[v].reset(new std::atomic<uint8_t>[views[v].depth->num_pixels()]());
   }
-  return out;
+}
+
+PointVerdict PointVerdicts::At(uint32_t view, int row, int col) const {
+  std::atomic<uint8_t>& slot = memo_[view][static_cast<size_t>(row) * views_[view].depth->width + col];
+  const uint8_t known = slot.load(std::memory_order_relaxed);
+  if (known != 0) return static_cast<PointVerdict>(known - 1);
+  // Two threads may judge the same pixel at once; both store the same value.
+  const PointVerdict verdict = Judge(view, row, col);
+  slot.store(static_cast<uint8_t>(verdict) + 1, std::memory_order_relaxed);
+  return verdict;
+}
+
+PointVerdict PointVerdicts::Judge(uint32_t v, int row, int col) const {
+  const SacView& view = views_[v];
+  const float d = view.depth->at(row, col);
+  if (!IsValidDepth(d)) return PointVerdict::kInvalid;
+  const Eigen::Vector3d point = PixelPoint(view, row, col, d);
+  // Each point is looked up once in each neighbour; the free-space test reuses those lookups.
+  const std::vector<uint32_t>& near = neighbors_[v];
+  std::array<DepthLookup, kMaxJudgingViews> hits;
+  for (size_t k = 0; k < near.size(); ++k) hits[k] = LookupDepth(views_[near[k]], point);
+  if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_)) return PointVerdict::kOutlier;
+  if (options_.free_space_min_views > 0 &&
+      InFreeSpace(views_, v, point, d, judges_[v], neighbor_slot_[v], hits.data(), noise_factor_, options_)) {
+    return PointVerdict::kFreeSpace;
+  }
+  return PointVerdict::kPasses;
 }
 
 }  // namespace sacfuse

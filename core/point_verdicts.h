@@ -1,8 +1,8 @@
 #pragma once
-// SAC's tests of every depth pixel's own point X against the other views, made once per pixel before the collapse
-// (core/collapse.h) so that the collapse knows which pixels of other views will be emitted: a pixel is dropped in
-// favour of another view only where that view's pixel survives these tests, so removing outliers never leaves a
-// hole that another view's pixel would have filled.
+// SAC's tests of a depth pixel's own point X against the other views. The collapse (core/collapse.h) asks for the
+// verdict of the pixels it would emit and of the other views' pixels it would drop a pixel in favour of: a pixel is
+// dropped in favour of another view only where that view's pixel survives these tests, so removing outliers never
+// leaves a hole that another view's pixel would have filled.
 //
 //  * Outliers (the paper is silent): X must agree with min(min_consistent_views, max(2, 1 + observers)) depth maps
 //    (its own included) among its view's neighbours, where observers are the neighbours that agree or see through
@@ -14,7 +14,14 @@
 //    than the tolerance and more than free_space_sigmas sigma of the two depths' difference, so X floats in space
 //    they observed empty (fattened foreground at depth jumps, blunders, noisy canopy). Measured on aerial-bench
 //    Montpellier (README): asking also that more views see through X than agree with it removed nothing.
+//
+// Verdicts are judged on first ask and remembered (issue 13): with `collapse: best_view` about 70 % of the pixels
+// are dropped in favour of another view's pixel before their own verdict matters, and judging every pixel up front
+// (~40 depth reads each) was 45 % of SAC's time. A verdict is a function of its pixel only, so which thread judges
+// it first, and when, changes nothing.
+#include <atomic>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/sac_options.h"
@@ -24,18 +31,28 @@ namespace sacfuse {
 
 enum class PointVerdict : uint8_t { kInvalid = 0, kOutlier = 1, kFreeSpace = 2, kPasses = 3 };
 
-// One verdict per depth pixel of each view (row-major, the view's depth raster), for every valid pixel of every
-// loaded view (a tile's halo pixels too: the collapse consults them). `judges[v]`: the views that judge free space
-// for view v. Deterministic for any thread count.
-struct PointVerdicts {
-  std::vector<std::vector<PointVerdict>> per_view;
-  PointVerdict At(uint32_t view, const DepthMap& depth, int row, int col) const {
-    return per_view[view][static_cast<size_t>(row) * depth.width + col];
-  }
-};
+// The verdicts of every pixel of every view of `views` (a tile's halo pixels too: the collapse consults them).
+// `neighbors[v]`: the views that judge v's outliers; `judges[v]`: those that judge its free space; `noise_factor` as
+// core/view_noise.h (empty = none). Keeps a reference to `views` (which must outlive it) and copies the rest.
+// At() may be called from many threads at once.
+class PointVerdicts {
+ public:
+  PointVerdicts(const std::vector<SacView>& views, std::vector<std::vector<uint32_t>> neighbors,
+                std::vector<std::vector<uint32_t>> judges, std::vector<double> noise_factor, const SacOptions& options);
 
-PointVerdicts JudgePoints(const std::vector<SacView>& views, const std::vector<std::vector<uint32_t>>& neighbors,
-                          const std::vector<std::vector<uint32_t>>& judges, const std::vector<double>& noise_factor,
-                          const SacOptions& options);
+  // The verdict of depth pixel (row, col) of `view`, judged now if it was not yet.
+  PointVerdict At(uint32_t view, int row, int col) const;
+
+ private:
+  PointVerdict Judge(uint32_t v, int row, int col) const;
+
+  const std::vector<SacView>& views_;
+  std::vector<std::vector<uint32_t>> neighbors_, judges_;
+  std::vector<std::vector<int>> neighbor_slot_;  // [v][b]: index of b in neighbors_[v], or -1
+  std::vector<double> noise_factor_;
+  SacOptions options_;
+  // Per view, row-major: 0 = not judged yet, else 1 + PointVerdict.
+  std::vector<std::unique_ptr<std::atomic<uint8_t>[]>> memo_;
+};
 
 }  // namespace sacfuse

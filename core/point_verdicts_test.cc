@@ -2,7 +2,10 @@
 // nadir views over a plane whose answers are known by construction (core/sac_test_scene.h).
 #include "core/point_verdicts.h"
 
+#include <algorithm>
+
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include "core/redundancy.h"
 #include "core/sac_fusion.h"
@@ -53,16 +56,16 @@ TEST(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses) 
   SacOptions options;
   options.min_consistent_views = 1;  // isolate the free-space test
   options.free_space_min_views = 2;
-  const PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
-  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 60), PointVerdict::kFreeSpace);  // both others see the ground behind
-  EXPECT_EQ(verdicts.At(0, block.depths[0], 10, 10), PointVerdict::kPasses);
-  EXPECT_EQ(verdicts.At(1, block.depths[1], 45, 60), PointVerdict::kPasses);
+  const PointVerdicts verdicts(views, others, others, {}, options);
+  EXPECT_EQ(verdicts.At(0, 45, 60), PointVerdict::kFreeSpace);  // both others see the ground behind
+  EXPECT_EQ(verdicts.At(0, 10, 10), PointVerdict::kPasses);
+  EXPECT_EQ(verdicts.At(1, 45, 60), PointVerdict::kPasses);
   // Asking for three views that see through it: only two can, so it passes that test.
   options.free_space_min_views = 3;
-  EXPECT_EQ(JudgePoints(views, others, others, {}, options).At(0, block.depths[0], 45, 60), PointVerdict::kPasses);
+  EXPECT_EQ(PointVerdicts(views, others, others, {}, options).At(0, 45, 60), PointVerdict::kPasses);
   // Off: nothing is free space.
   options.free_space_min_views = 0;
-  EXPECT_EQ(JudgePoints(views, others, others, {}, options).At(0, block.depths[0], 45, 60), PointVerdict::kPasses);
+  EXPECT_EQ(PointVerdicts(views, others, others, {}, options).At(0, 45, 60), PointVerdict::kPasses);
 }
 
 TEST(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
@@ -72,16 +75,49 @@ TEST(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
   SacOptions options;
   options.min_consistent_views = 2;
   options.free_space_min_views = 0;
-  const PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
-  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 60), PointVerdict::kOutlier);  // nobody agrees with the floater
+  const PointVerdicts verdicts(views, others, others, {}, options);
+  EXPECT_EQ(verdicts.At(0, 45, 60), PointVerdict::kOutlier);  // nobody agrees with the floater
   // Seen by no other view: an outlier as soon as two views are asked for.
-  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 5), PointVerdict::kOutlier);
-  EXPECT_EQ(verdicts.At(0, block.depths[0], 45, 100), PointVerdict::kPasses);  // seen and agreed by views 1, 2
+  EXPECT_EQ(verdicts.At(0, 45, 5), PointVerdict::kOutlier);
+  EXPECT_EQ(verdicts.At(0, 45, 100), PointVerdict::kPasses);  // seen and agreed by views 1, 2
   // Invalid depth pixels get no verdict.
   SyntheticBlock holes = BlockWithFloater();
   holes.depths[2].at(5, 5) = 0.0f;
   const auto hole_views = holes.SacViews();
-  EXPECT_EQ(JudgePoints(hole_views, others, others, {}, options).At(2, holes.depths[2], 5, 5), PointVerdict::kInvalid);
+  EXPECT_EQ(PointVerdicts(hole_views, others, others, {}, options).At(2, 5, 5), PointVerdict::kInvalid);
+}
+
+// Verdicts are judged on first ask and remembered: asked in any order, from many threads, they are the same.
+TEST(PointVerdictsTest, VerdictsDoNotDependOnTheOrderTheyAreAskedIn) {
+  const SyntheticBlock block = BlockWithFloater();
+  const auto views = block.SacViews();
+  const auto others = AllOthers(views.size());
+  SacOptions options;
+  options.min_consistent_views = 2;
+  options.free_space_min_views = 2;
+  const PointVerdicts forward(views, others, others, {}, options);
+  const PointVerdicts backward(views, others, others, {}, options);
+  const PointVerdicts parallel(views, others, others, {}, options);
+  const DepthMap& depth = block.depths[0];
+  const int n = static_cast<int>(depth.num_pixels());
+  std::vector<PointVerdict> in_order(n), in_reverse(n);
+  for (int i = 0; i < n; ++i) in_order[i] = forward.At(0, i / depth.width, i % depth.width);
+  for (int i = n - 1; i >= 0; --i) in_reverse[i] = backward.At(0, i / depth.width, i % depth.width);
+  // Four askers per pixel, racing.
+  std::vector<std::vector<PointVerdict>> in_parallel(4, std::vector<PointVerdict>(n));
+  tbb::parallel_for(0, 4 * n, [&](int i) {
+    const int pixel = (i * 7919) % n;  // scattered (7919 is prime, n is not a multiple of it)
+    in_parallel[i / n][pixel] = parallel.At(0, pixel / depth.width, pixel % depth.width);
+  });
+  EXPECT_EQ(in_order, in_reverse);
+  for (const auto& asked : in_parallel) EXPECT_EQ(in_order, asked);
+  // And the second ask returns what the first judged.
+  for (int i = 0; i < n; ++i) ASSERT_EQ(forward.At(0, i / depth.width, i % depth.width), in_order[i]);
+  // The 10 x 10 floater fails its tests; most of the ground passes.
+  for (int r = 40; r < 50; ++r) {
+    for (int c = 55; c < 65; ++c) EXPECT_NE(in_order[r * depth.width + c], PointVerdict::kPasses);
+  }
+  EXPECT_GT(std::count(in_order.begin(), in_order.end(), PointVerdict::kPasses), n / 2);
 }
 
 // Best-view collapse alone: no outlier or free-space test.
@@ -109,7 +145,7 @@ TEST(RedundancyTest, BestViewEmitsAloneWhereItSeesAndTheOtherViewFillsTheRest) {
   const auto views = block.SacViews();
   const auto others = AllOthers(views.size());
   const SacOptions options = BestViewOnly();
-  const PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
+  const PointVerdicts verdicts(views, others, others, {}, options);
   const NodeTable nodes = BuildNodes(views);
   const std::vector<uint32_t> own_labels = OwnLabels(nodes);
   // View 1's pixel under view 0's footprint centre, and one far outside it.
@@ -143,14 +179,17 @@ TEST(RedundancyTest, BetterViewWhosePixelIsDroppedDoesNotMakeAHole) {
   const SacOptions options = BestViewOnly();
   const NodeTable nodes = BuildNodes(views);
   const std::vector<uint32_t> own_labels = OwnLabels(nodes);
-  PointVerdicts verdicts = JudgePoints(views, others, others, {}, options);
+  const PointVerdicts verdicts(views, others, others, {}, options);
   const Eigen::Vector3d centre = views[1].world_from_cam * views[1].depth_camera.Unproject(60.5, 45.5, 500.0);
   EXPECT_TRUE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
-  // Mark every pixel of the fine view as an outlier: the coarse view keeps its pixel.
-  for (auto& verdict : verdicts.per_view[0]) verdict = PointVerdict::kOutlier;
-  EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
+  // Every pixel of the fine view an outlier (it has no neighbour to agree with, and two consistent views are
+  // required): the coarse view keeps its pixel.
+  SacOptions strict = options;
+  strict.min_consistent_views = 2;
+  const PointVerdicts fine_outliers(views, {{}, {0}}, others, {}, strict);
+  EXPECT_EQ(fine_outliers.At(0, 45, 60), PointVerdict::kOutlier);
+  EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, fine_outliers, strict));
   // And a fine pixel whose Netlet chose the coarse view does not count either (it is collapsed by the Netlet rule).
-  verdicts = JudgePoints(views, others, others, {}, options);
   std::vector<uint32_t> all_coarse(nodes.nodes.size(), 1);
   EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, all_coarse, verdicts, options));
 }

@@ -17,17 +17,19 @@ bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen:
   const double own_sigma = sigma_m(v, depth_m);
   for (const uint32_t b : judges) {
     if (b == v) continue;
-    const DepthLookup hit = LookupDepth(views[b], point_in_world);
-    if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
-    const double sigma_b = sigma_m(b, hit.z_m);
+    const SacView& bv = views[b];
+    // Precision first: it needs only the point's depth in b, not the read of b's depth map (a cache miss).
+    const Eigen::Vector3d point_in_b = bv.PointInCamera(point_in_world);
+    const double sigma_b = sigma_m(b, point_in_b.z());
     if (sigma_b > own_sigma || (sigma_b == own_sigma && b > v)) continue;
+    const DepthLookup hit = LookupDepthInCamera(bv, point_in_b);
+    if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
     const double pair_sigma = noise_factor.empty() ? 0.0 : PairSigmaM(own_sigma, sigma_b);
-    const double tolerance = std::max(DepthToleranceM(views[b], hit.z_m, options),
+    const double tolerance = std::max(DepthToleranceM(bv, hit.z_m, options),
                                       options.redundancy_tolerance_sigmas * pair_sigma);
     if (std::abs(hit.stored_depth_m - hit.z_m) > tolerance) continue;
-    const SacView& bv = views[b];
     if (chosen_view[nodes.Id(b, static_cast<uint32_t>(bv.superpixels->label(hit.row, hit.col)))] != b) continue;
-    if (verdicts.At(b, *bv.depth, hit.row, hit.col) != PointVerdict::kPasses) continue;
+    if (verdicts.At(b, hit.row, hit.col) != PointVerdict::kPasses) continue;
     return true;
   }
   return false;

@@ -1,6 +1,7 @@
 #include "core/sac_fusion.h"
 
 #include <chrono>
+#include <utility>
 
 #include "core/correspondences.h"
 #include "core/netlets.h"
@@ -61,8 +62,8 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   timer.Mark("labelling");
   std::vector<std::vector<uint32_t>> judges(views.size());
   for (uint32_t v = 0; v < views.size(); ++v) judges[v] = combine_views[v].empty() ? neighbors[v] : combine_views[v];
-  const PointVerdicts verdicts = JudgePoints(views, neighbors, judges, noise_factor, options);
-  timer.Mark("point tests");
+  // Judged on demand by the collapse (core/point_verdicts.h): their time is part of the collapse stage.
+  const PointVerdicts verdicts(views, neighbors, std::move(judges), noise_factor, options);
   stats.emitted_per_view.assign(views.size(), 0);
   for (uint32_t v = 0; v < views.size(); ++v) {
     const CollapseStats s = EmitView(v, views, nodes, chosen, neighbors, combine_views, noise_factor, verdicts, options,

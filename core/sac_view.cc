@@ -20,8 +20,11 @@ SacView MakeSacView(const View& view, const DepthMap* depth, const SuperpixelMap
 }
 
 DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_world) {
+  return LookupDepthInCamera(view, view.PointInCamera(point_in_world));
+}
+
+DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& p) {
   DepthLookup out;
-  const Eigen::Vector3d p = view.PointInCamera(point_in_world);
   if (p.z() <= 0) return out;
   const Eigen::Vector2d uv = view.depth_camera.Project(p);
   if (!(uv.x() >= 0 && uv.y() >= 0 && uv.x() < view.depth->width && uv.y() < view.depth->height)) return out;

@@ -48,6 +48,9 @@ struct DepthLookup {
   float stored_depth_m = 0.0f;  // the depth map's value at the pixel (<= 0 invalid)
 };
 DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_world);
+// The same for a point already in the view's camera frame (view.PointInCamera), for callers that test its depth
+// before paying for the read of the depth map.
+DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& point_in_camera);
 
 // The colour of depth pixel (row, col): the image pixel under its centre (the image may have another resolution
 // than the depth raster); mid grey when the view has no image.
