@@ -34,7 +34,7 @@ bool CoverageAgrees(const std::vector<SacView>& views, uint32_t v, double d, uin
 }  // namespace
 
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
-                       const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
+                       const std::vector<uint32_t>& chosen_view, const std::vector<uint32_t>& redundancy_judges,
                        const std::vector<std::vector<uint32_t>>& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
                        const SacOptions& options, const std::function<bool(const Eigen::Vector3d&)>& owner,
@@ -50,8 +50,6 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   combine_options.weights = options.combine_weights == "equal"   ? CombineWeights::kEqual
                            : options.combine_weights == "noise" ? CombineWeights::kNoise
                                                                 : CombineWeights::kView;
-  // The views that judge redundancy: the combine views (up to 40), else the neighbour views.
-  const std::vector<uint32_t>& judges = combine_views[v].empty() ? neighbors[v] : combine_views[v];
   const bool best_view = options.collapse == "best_view";
   std::vector<std::vector<FusedPoint>> block_points(kBlocksPerBatch);
   std::vector<CollapseStats> block_stats(kBlocksPerBatch);
@@ -99,7 +97,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           }
           ++stats.kept_uncovered;
         }
-        if (best_view && BetterViewEmits(views, v, point, d, judges, noise_factor, nodes, chosen_view, verdicts,
+        if (best_view && BetterViewEmits(views, v, point, d, redundancy_judges, noise_factor, nodes, chosen_view, verdicts,
                                          options)) {
           ++stats.redundant;
           continue;

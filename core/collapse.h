@@ -45,12 +45,13 @@ struct CollapseStats {
   }
 };
 
-// Emits the fused points of view `v` to `sink` in row order (deterministic for any thread count). `neighbors`
-// judge outliers; `combine_views` (fusion.combine: average) refine the emitted depths, weighted with the views'
+// Emits the fused points of view `v` to `sink` in row order (deterministic for any thread count).
+// `redundancy_judges`: the views searched for a better view (core/redundancy.h, RedundancySearchOrder);
+// `combine_views` (fusion.combine: average) refine the emitted depths, weighted with the views'
 // `noise_factor` (core/view_noise.h; empty = equal). Pixels whose own point `owner` rejects are skipped and not
 // counted (empty owner = all pixels).
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
-                       const std::vector<uint32_t>& chosen_view, const std::vector<std::vector<uint32_t>>& neighbors,
+                       const std::vector<uint32_t>& chosen_view, const std::vector<uint32_t>& redundancy_judges,
                        const std::vector<std::vector<uint32_t>>& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
                        const SacOptions& options, const std::function<bool(const Eigen::Vector3d&)>& owner,

@@ -167,6 +167,21 @@ TEST(RedundancyTest, BestViewEmitsAloneWhereItSeesAndTheOtherViewFillsTheRest) {
   EXPECT_NEAR(kept_fraction, 17.5 / 20.0, 0.06);
 }
 
+// The better-view search tries the most precise views first: lower, then (same height) lower noise factor.
+TEST(RedundancyTest, SearchOrderIsMostPreciseFirst) {
+  SyntheticBlock block;
+  const double heights_m[] = {500.0, 250.0, 500.0, 400.0};
+  for (uint32_t i = 0; i < 4; ++i) {
+    const View view = NadirView(i, kEast + 2.0 * i, kNorth, heights_m[i]);
+    block.Add(view, PlaneDepth(view));
+  }
+  const auto views = block.SacViews();
+  const auto others = AllOthers(views.size());
+  EXPECT_EQ(RedundancySearchOrder(views, others, {})[0], (std::vector<uint32_t>{1, 3, 2}));
+  // View 1 noisier by 5x (k z^2 = 5 x 250^2 > 500^2): last; view 2 less noisy than view 0 at the same height.
+  EXPECT_EQ(RedundancySearchOrder(views, others, {1.0, 5.0, 0.9, 1.0})[0], (std::vector<uint32_t>{3, 2, 1}));
+}
+
 // A better view whose pixel is an outlier does not take the surface away from the other view: no hole.
 TEST(RedundancyTest, BetterViewWhosePixelIsDroppedDoesNotMakeAHole) {
   SyntheticBlock block;

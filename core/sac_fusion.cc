@@ -5,6 +5,7 @@
 
 #include "core/correspondences.h"
 #include "core/netlets.h"
+#include "core/redundancy.h"
 #include "core/sac_nodes.h"
 #include "core/view_neighbors.h"
 #include "core/view_noise.h"
@@ -62,12 +63,13 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   timer.Mark("labelling");
   std::vector<std::vector<uint32_t>> judges(views.size());
   for (uint32_t v = 0; v < views.size(); ++v) judges[v] = combine_views[v].empty() ? neighbors[v] : combine_views[v];
+  const std::vector<std::vector<uint32_t>> redundancy_judges = RedundancySearchOrder(views, judges, noise_factor);
   // Judged on demand by the collapse (core/point_verdicts.h): their time is part of the collapse stage.
   const PointVerdicts verdicts(views, neighbors, std::move(judges), noise_factor, options);
   stats.emitted_per_view.assign(views.size(), 0);
   for (uint32_t v = 0; v < views.size(); ++v) {
-    const CollapseStats s = EmitView(v, views, nodes, chosen, neighbors, combine_views, noise_factor, verdicts, options,
-                                        owner, sink);
+    const CollapseStats s = EmitView(v, views, nodes, chosen, redundancy_judges[v], combine_views, noise_factor,
+                                     verdicts, options, owner, sink);
     stats.emitted_per_view[v] = s.emitted;
     stats.collapse += s;
     if (progress) progress("collapse", v + 1, views.size());
