@@ -97,8 +97,8 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           }
           ++stats.kept_uncovered;
         }
-        if (best_view && BetterViewEmits(views, v, point, d, redundancy_judges, noise_factor, nodes, chosen_view, verdicts,
-                                         options)) {
+        if (best_view && BetterViewEmits(views, v, point, d, redundancy_judges, noise_factor, nodes, chosen_view,
+                                         verdicts, options)) {
           ++stats.redundant;
           continue;
         }
