@@ -2,6 +2,7 @@
 
 #include <sys/types.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -17,16 +18,14 @@
 namespace sacfuse {
 namespace {
 
-constexpr char kMagic[8] = {'S', 'A', 'C', 'S', 'P', 'X', '0', '1'};
+constexpr char kMagicInt32[8] = {'S', 'A', 'C', 'S', 'P', 'X', '0', '1'};  // int32 labels
+constexpr char kMagicBanded[8] = {'S', 'A', 'C', 'S', 'P', 'X', '0', '2'};  // u16 offsets in row bands
 constexpr uint64_t kHeaderBytes = 32;
 constexpr uint64_t kClusterBytes = 20;
+constexpr int kBandRows = 64;          // rows per band of the banded layout
+constexpr int64_t kMaxBandSpan = 65535;  // largest label - band base a u16 holds
 
-bool HostIsLittleEndian() {
-  const uint32_t one = 1;
-  unsigned char first;
-  std::memcpy(&first, &one, 1);
-  return first == 1;
-}
+uint64_t NumBands(uint64_t height) { return (height + kBandRows - 1) / kBandRows; }
 
 void PutU32(unsigned char* p, uint32_t v) {
   for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));
@@ -56,17 +55,6 @@ float GetF32(const unsigned char* p) {
   return v;
 }
 
-// Labels are stored little-endian; on big-endian hosts they are swapped in place (before writing / after
-// reading).
-void SwapLabelsIfBigEndian(int32_t* labels, size_t n) {
-  if (HostIsLittleEndian()) return;
-  for (size_t i = 0; i < n; ++i) {
-    unsigned char b[4];
-    PutU32(b, static_cast<uint32_t>(labels[i]));
-    std::memcpy(&labels[i], b, 4);
-  }
-}
-
 struct FileCloser {
   void operator()(std::FILE* f) const { std::fclose(f); }
 };
@@ -76,6 +64,16 @@ using File = std::unique_ptr<std::FILE, FileCloser>;
 struct OpenFile {
   File file;
   SuperpixelFileInfo info;
+  bool banded = false;                // SACSPX02
+  std::vector<uint32_t> band_base;    // banded: the label base of each band of kBandRows rows
+  uint64_t labels_offset = 0;         // byte offset of label (row 0, col 0)
+  uint64_t label_bytes = 4;           // 4 (int32) or 2 (u16 offset from the band's base)
+  uint64_t LabelOffset(uint64_t row, uint64_t col) const {
+    return labels_offset + (row * static_cast<uint64_t>(info.width) + col) * label_bytes;
+  }
+  uint64_t ClusterTableOffset() const {
+    return labels_offset + static_cast<uint64_t>(info.width) * info.height * label_bytes;
+  }
 };
 
 void ReadExactly(std::FILE* f, const std::string& path, uint64_t offset, void* data, size_t bytes, const char* what) {
@@ -99,8 +97,10 @@ OpenFile Open(const std::string& path) {
   }
   unsigned char header[kHeaderBytes];
   ReadExactly(f, path, 0, header, kHeaderBytes, "the header");
-  if (std::memcmp(header, kMagic, sizeof(kMagic)) != 0) {
-    throw InputError(path, "not a superpixel file (magic is not SACSPX01)");
+  if (std::memcmp(header, kMagicBanded, sizeof(kMagicBanded)) == 0) {
+    open.banded = true;
+  } else if (std::memcmp(header, kMagicInt32, sizeof(kMagicInt32)) != 0) {
+    throw InputError(path, "not a superpixel file (magic is not SACSPX01 or SACSPX02)");
   }
   const uint32_t width = GetU32(header + 8);
   const uint32_t height = GetU32(header + 12);
@@ -111,8 +111,11 @@ OpenFile Open(const std::string& path) {
     throw InputError(path, "invalid raster size " + std::to_string(width) + "x" + std::to_string(height));
   }
   const uint64_t pixels = static_cast<uint64_t>(width) * height;
-  const bool counts_plausible = pixels <= size / 4 && clusters <= size / kClusterBytes;
-  if (!counts_plausible || kHeaderBytes + pixels * 4 + clusters * kClusterBytes != size) {
+  open.label_bytes = open.banded ? 2 : 4;
+  const uint64_t bands = open.banded ? NumBands(height) : 0;
+  open.labels_offset = kHeaderBytes + bands * 4;
+  const bool counts_plausible = pixels <= size / open.label_bytes && clusters <= size / kClusterBytes;
+  if (!counts_plausible || open.labels_offset + pixels * open.label_bytes + clusters * kClusterBytes != size) {
     throw InputError(path, "file size " + std::to_string(size) + " bytes does not match " + std::to_string(width) +
                                "x" + std::to_string(height) + " labels and " + std::to_string(clusters) +
                                " clusters (truncated or corrupt)");
@@ -120,6 +123,18 @@ OpenFile Open(const std::string& path) {
   if (clusters > static_cast<uint64_t>(INT32_MAX) || clusters > pixels || (pixels > 0 && clusters == 0)) {
     throw InputError(path, "invalid cluster count " + std::to_string(clusters) + " for " + std::to_string(pixels) +
                                " pixels");
+  }
+  if (open.banded) {
+    std::vector<unsigned char> raw(bands * 4);
+    ReadExactly(f, path, kHeaderBytes, raw.data(), raw.size(), "the band bases");
+    open.band_base.resize(bands);
+    for (uint64_t b = 0; b < bands; ++b) {
+      open.band_base[b] = GetU32(raw.data() + b * 4);
+      if (open.band_base[b] >= clusters) {
+        throw InputError(path, "band " + std::to_string(b) + " base " + std::to_string(open.band_base[b]) +
+                                   " is not below the " + std::to_string(clusters) + " clusters");
+      }
+    }
   }
   open.info.width = static_cast<int>(width);
   open.info.height = static_cast<int>(height);
@@ -132,7 +147,7 @@ std::vector<SuperpixelCluster> ReadClusterTable(const OpenFile& open, const std:
   const SuperpixelFileInfo& info = open.info;
   const uint64_t pixels = static_cast<uint64_t>(info.width) * info.height;
   std::vector<unsigned char> raw(info.num_clusters * kClusterBytes);
-  ReadExactly(open.file.get(), path, kHeaderBytes + pixels * 4, raw.data(), raw.size(), "the cluster table");
+  ReadExactly(open.file.get(), path, open.ClusterTableOffset(), raw.data(), raw.size(), "the cluster table");
   std::vector<SuperpixelCluster> clusters(info.num_clusters);
   uint64_t total = 0;
   for (size_t i = 0; i < clusters.size(); ++i) {
@@ -156,23 +171,50 @@ std::vector<SuperpixelCluster> ReadClusterTable(const OpenFile& open, const std:
   return clusters;
 }
 
+// Reads `count` labels of row `row` from column `col` into `out`, decodes them and range-checks them.
+void ReadLabelRun(const OpenFile& open, const std::string& path, uint64_t row, uint64_t col, size_t count,
+                  int32_t* out) {
+  std::vector<unsigned char> raw(count * open.label_bytes);
+  ReadExactly(open.file.get(), path, open.LabelOffset(row, col), raw.data(), raw.size(), "the label rows");
+  const auto n = static_cast<int64_t>(open.info.num_clusters);
+  const int64_t base = open.banded ? open.band_base[row / kBandRows] : 0;
+  for (size_t i = 0; i < count; ++i) {
+    const unsigned char* p = raw.data() + i * open.label_bytes;
+    const int64_t label = open.banded ? base + (p[0] | (p[1] << 8)) : static_cast<int32_t>(GetU32(p));
+    if (label < 0 || label >= n) {
+      throw InputError(path, "label " + std::to_string(label) + " at row " + std::to_string(row) + ", col " +
+                                 std::to_string(col + i) + " is outside [0, " + std::to_string(n) + ")");
+    }
+    out[i] = static_cast<int32_t>(label);
+  }
+}
+
 // Reads rows [row_begin, row_end) into map->labels and range-checks them.
 void ReadLabelRows(const OpenFile& open, const std::string& path, int row_begin, int row_end, SuperpixelMap* map) {
-  const uint64_t width = static_cast<uint64_t>(open.info.width);
-  const size_t count = static_cast<size_t>(width * static_cast<uint64_t>(row_end - row_begin));
-  map->labels.resize(count);
-  ReadExactly(open.file.get(), path, kHeaderBytes + static_cast<uint64_t>(row_begin) * width * 4, map->labels.data(),
-              count * 4, "the label rows");
-  SwapLabelsIfBigEndian(map->labels.data(), count);
-  const auto n = static_cast<int64_t>(open.info.num_clusters);
-  for (size_t i = 0; i < count; ++i) {
-    const int32_t label = map->labels[i];
-    if (label < 0 || label >= n) {
-      throw InputError(path, "label " + std::to_string(label) + " at row " +
-                                 std::to_string(row_begin + static_cast<int64_t>(i / width)) + ", col " +
-                                 std::to_string(i % width) + " is outside [0, " + std::to_string(n) + ")");
-    }
+  const auto width = static_cast<size_t>(open.info.width);
+  map->labels.resize(width * static_cast<size_t>(row_end - row_begin));
+  // One read per band (banded) or for all rows (int32): contiguous on disk either way.
+  for (int row = row_begin; row < row_end;) {
+    const int band_end = open.banded ? std::min(row_end, (row / kBandRows + 1) * kBandRows) : row_end;
+    ReadLabelRun(open, path, static_cast<uint64_t>(row), 0, width * static_cast<size_t>(band_end - row),
+                 map->labels.data() + width * static_cast<size_t>(row - row_begin));
+    row = band_end;
   }
+}
+
+// Whether every band of kBandRows rows spans at most kMaxBandSpan labels (then the banded layout holds the map);
+// `base` receives each band's smallest label.
+bool BandsFit(const SuperpixelMap& map, std::vector<uint32_t>* base) {
+  const auto width = static_cast<size_t>(map.width);
+  base->assign(NumBands(static_cast<uint64_t>(map.height)), 0);
+  for (size_t b = 0; b < base->size(); ++b) {
+    const size_t begin = b * kBandRows * width;
+    const size_t end = std::min(map.labels.size(), (b + 1) * kBandRows * width);
+    const auto [lo, hi] = std::minmax_element(map.labels.begin() + begin, map.labels.begin() + end);
+    if (*hi - static_cast<int64_t>(*lo) > kMaxBandSpan) return false;
+    (*base)[b] = static_cast<uint32_t>(*lo);
+  }
+  return true;
 }
 
 void WriteAll(std::FILE* f, const void* data, size_t bytes, const std::string& path, const std::string& tmp) {
@@ -198,6 +240,8 @@ void WriteSuperpixels(const std::string& path, const SuperpixelMap& map, uint64_
     }
   }
 
+  std::vector<uint32_t> band_base;
+  const bool banded = BandsFit(map, &band_base);
   const auto parent = std::filesystem::path(path).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
   const std::string tmp = TemporaryPathFor(path);
@@ -206,21 +250,34 @@ void WriteSuperpixels(const std::string& path, const SuperpixelMap& map, uint64_
   try {
     std::FILE* f = file.get();
     unsigned char header[kHeaderBytes];
-    std::memcpy(header, kMagic, sizeof(kMagic));
+    std::memcpy(header, banded ? kMagicBanded : kMagicInt32, sizeof(kMagicBanded));
     PutU32(header + 8, static_cast<uint32_t>(map.width));
     PutU32(header + 12, static_cast<uint32_t>(map.height));
     PutU64(header + 16, map.clusters.size());
     PutU64(header + 24, options_hash);
     WriteAll(f, header, sizeof(header), path, tmp);
-    if (HostIsLittleEndian()) {
-      WriteAll(f, map.labels.data(), map.labels.size() * 4, path, tmp);
-    } else {
-      std::vector<int32_t> row(static_cast<size_t>(map.width));
-      for (int r = 0; r < map.height; ++r) {
-        std::memcpy(row.data(), map.labels.data() + static_cast<size_t>(r) * map.width, row.size() * 4);
-        SwapLabelsIfBigEndian(row.data(), row.size());
-        WriteAll(f, row.data(), row.size() * 4, path, tmp);
+    if (banded) {
+      std::vector<unsigned char> raw(band_base.size() * 4);
+      for (size_t b = 0; b < band_base.size(); ++b) PutU32(raw.data() + b * 4, band_base[b]);
+      WriteAll(f, raw.data(), raw.size(), path, tmp);
+    }
+    // Labels row by row, little-endian: u16 offsets from the row's band base, or int32.
+    const size_t label_bytes = banded ? 2 : 4;
+    std::vector<unsigned char> row(static_cast<size_t>(map.width) * label_bytes);
+    for (int r = 0; r < map.height; ++r) {
+      const int32_t* labels = map.labels.data() + static_cast<size_t>(r) * map.width;
+      const uint32_t base = banded ? band_base[static_cast<size_t>(r / kBandRows)] : 0;
+      for (int c = 0; c < map.width; ++c) {
+        unsigned char* p = row.data() + static_cast<size_t>(c) * label_bytes;
+        if (banded) {
+          const uint32_t offset = static_cast<uint32_t>(labels[c]) - base;
+          p[0] = static_cast<unsigned char>(offset);
+          p[1] = static_cast<unsigned char>(offset >> 8);
+        } else {
+          PutU32(p, static_cast<uint32_t>(labels[c]));
+        }
       }
+      WriteAll(f, row.data(), row.size(), path, tmp);
     }
     std::vector<unsigned char> table(map.clusters.size() * kClusterBytes);
     for (size_t i = 0; i < map.clusters.size(); ++i) {
@@ -285,22 +342,11 @@ std::vector<int32_t> ReadSuperpixelLabelWindow(const std::string& path, const Pi
                 std::to_string(open.info.width) + "x" + std::to_string(open.info.height) + " pixels");
   }
   if (info != nullptr) *info = open.info;
-  const uint64_t width = static_cast<uint64_t>(open.info.width);
   const size_t row_values = static_cast<size_t>(window.width());
   std::vector<int32_t> labels(window.num_pixels());
   for (int r = 0; r < window.height(); ++r) {
-    const uint64_t offset = kHeaderBytes + ((static_cast<uint64_t>(window.row_begin) + r) * width + window.col_begin) * 4;
-    ReadExactly(open.file.get(), path, offset, labels.data() + r * row_values, row_values * 4, "the label rows");
-  }
-  SwapLabelsIfBigEndian(labels.data(), labels.size());
-  const auto n = static_cast<int64_t>(open.info.num_clusters);
-  for (size_t i = 0; i < labels.size(); ++i) {
-    if (labels[i] < 0 || labels[i] >= n) {
-      throw InputError(path, "label " + std::to_string(labels[i]) + " at row " +
-                                 std::to_string(window.row_begin + static_cast<int64_t>(i / row_values)) + ", col " +
-                                 std::to_string(window.col_begin + static_cast<int64_t>(i % row_values)) +
-                                 " is outside [0, " + std::to_string(n) + ")");
-    }
+    ReadLabelRun(open, path, static_cast<uint64_t>(window.row_begin) + r, static_cast<uint64_t>(window.col_begin),
+                 row_values, labels.data() + r * row_values);
   }
   return labels;
 }

@@ -83,15 +83,16 @@ void ExpectAllReadersReject(const std::string& path, const std::string& why) {
 TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
   testing::TempDir dir;
   const std::string path = (dir / "sub" / "view_0007.spx").string();
-  const SuperpixelMap map = MakeMap(37, 29);
+  const SuperpixelMap map = MakeMap(37, 150);  // three bands of 64 rows: non-zero band bases
   WriteSuperpixels(path, map, 0x0123456789abcdefull);
 
   const SuperpixelFileInfo info = ReadSuperpixelInfo(path);
   EXPECT_EQ(info.width, 37);
-  EXPECT_EQ(info.height, 29);
+  EXPECT_EQ(info.height, 150);
   EXPECT_EQ(info.num_clusters, map.clusters.size());
   EXPECT_EQ(info.options_hash, 0x0123456789abcdefull);
-  EXPECT_EQ(std::filesystem::file_size(path), 32u + 37u * 29u * 4u + map.clusters.size() * 20u);
+  // The banded layout: 3 band bases, u16 labels.
+  EXPECT_EQ(std::filesystem::file_size(path), 32u + 3u * 4u + 37u * 150u * 2u + map.clusters.size() * 20u);
 
   const SuperpixelMap full = ReadSuperpixels(path);
   EXPECT_EQ(full.width, map.width);
@@ -99,7 +100,8 @@ TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
   EXPECT_EQ(full.labels, map.labels);
   ExpectClustersEqual(full.clusters, map.clusters);
 
-  for (const auto& window : std::vector<std::pair<int, int>>{{0, 29}, {5, 17}, {28, 29}, {0, 1}, {11, 11}}) {
+  const std::vector<std::pair<int, int>> windows = {{0, 150}, {5, 17}, {60, 70}, {63, 129}, {149, 150}, {0, 1}, {11, 11}};
+  for (const auto& window : windows) {
     SCOPED_TRACE(std::to_string(window.first) + ".." + std::to_string(window.second));
     const SuperpixelMap rows = ReadSuperpixelRows(path, window.first, window.second);
     EXPECT_EQ(rows.width, 37);
@@ -108,7 +110,7 @@ TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
     EXPECT_EQ(rows.labels, slice);
     ExpectClustersEqual(rows.clusters, map.clusters);
   }
-  EXPECT_THROW(ReadSuperpixelRows(path, 5, 30), Error);
+  EXPECT_THROW(ReadSuperpixelRows(path, 5, 151), Error);
   EXPECT_THROW(ReadSuperpixelRows(path, -1, 3), Error);
   EXPECT_THROW(ReadSuperpixelRows(path, 6, 5), Error);
 
@@ -121,11 +123,11 @@ TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
 TEST(SuperpixelIoTest, LabelWindowsAreTheCropOfTheFullMap) {
   testing::TempDir dir;
   const std::string path = (dir / "w.spx").string();
-  const SuperpixelMap map = MakeMap(37, 29);
+  const SuperpixelMap map = MakeMap(37, 150);
   WriteSuperpixels(path, map, 5);
   ExpectClustersEqual(ReadSuperpixelClusters(path), map.clusters);
-  for (const PixelWindow& w : {PixelWindow{0, 29, 0, 37}, PixelWindow{3, 17, 5, 6}, PixelWindow{28, 29, 30, 37},
-                               PixelWindow{10, 20, 0, 12}}) {
+  for (const PixelWindow& w : {PixelWindow{0, 150, 0, 37}, PixelWindow{3, 17, 5, 6}, PixelWindow{149, 150, 30, 37},
+                               PixelWindow{10, 20, 0, 12}, PixelWindow{60, 130, 7, 20}}) {
     SCOPED_TRACE(PixelWindowText(w));
     SuperpixelFileInfo info;
     const std::vector<int32_t> labels = ReadSuperpixelLabelWindow(path, w, &info);
@@ -138,7 +140,7 @@ TEST(SuperpixelIoTest, LabelWindowsAreTheCropOfTheFullMap) {
       }
     }
   }
-  EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{0, 30, 0, 5}), Error);
+  EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{0, 151, 0, 5}), Error);
   EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{0, 5, 30, 38}), Error);
   EXPECT_THROW(ReadSuperpixelLabelWindow(path, PixelWindow{4, 4, 0, 5}), Error);
   // The partial readers check what they read; a truncated file fails the header's size check for both.
@@ -150,17 +152,48 @@ TEST(SuperpixelIoTest, LabelWindowsAreTheCropOfTheFullMap) {
 TEST(SuperpixelIoTest, OnDiskLayoutIsLittleEndian) {
   testing::TempDir dir;
   const std::string path = (dir / "a.spx").string();
-  SuperpixelMap map = MakeMap(16, 8);  // two clusters: labels 0 and 1
+  SuperpixelMap map = MakeMap(16, 72);  // two bands (rows 0-63: labels 0-15, rows 64-71: labels 16-17)
   WriteSuperpixels(path, map, 0x1122334455667788ull);
   const std::string bytes = Slurp(path);
-  ASSERT_EQ(bytes.size(), 32u + 16 * 8 * 4 + 2 * 20);
-  EXPECT_EQ(bytes.substr(0, 8), "SACSPX01");
+  const size_t labels = 32 + 2 * 4, table = labels + 16 * 72 * 2;
+  ASSERT_EQ(bytes.size(), table + 18 * 20);
+  EXPECT_EQ(bytes.substr(0, 8), "SACSPX02");
   EXPECT_EQ(bytes.substr(8, 4), std::string("\x10\0\0\0", 4));
-  EXPECT_EQ(bytes.substr(12, 4), std::string("\x08\0\0\0", 4));
-  EXPECT_EQ(bytes.substr(16, 8), std::string("\x02\0\0\0\0\0\0\0", 8));
+  EXPECT_EQ(bytes.substr(12, 4), std::string("\x48\0\0\0", 4));
+  EXPECT_EQ(bytes.substr(16, 8), std::string("\x12\0\0\0\0\0\0\0", 8));
   EXPECT_EQ(bytes.substr(24, 8), std::string("\x88\x77\x66\x55\x44\x33\x22\x11", 8));
-  EXPECT_EQ(bytes.substr(32 + 8 * 4, 4), std::string("\x01\0\0\0", 4));  // row 0, col 8 -> cluster 1
-  EXPECT_EQ(bytes.substr(32 + 16 * 8 * 4 + 20 + 12, 4), std::string("\x40\0\0\0", 4));  // cluster 1: 64 pixels
+  EXPECT_EQ(bytes.substr(32, 8), std::string("\0\0\0\0\x10\0\0\0", 8));  // band bases 0 and 16
+  EXPECT_EQ(bytes.substr(labels + 8 * 2, 2), std::string("\x01\0", 2));  // row 0, col 8 -> cluster 1
+  EXPECT_EQ(bytes.substr(labels + (64 * 16 + 8) * 2, 2), std::string("\x01\0", 2));  // row 64, col 8 -> 16 + 1
+  EXPECT_EQ(bytes.substr(table + 20 + 12, 4), std::string("\x40\0\0\0", 4));  // cluster 1: 64 pixels
+}
+
+// A band spanning more than 65,535 labels does not fit u16 offsets: the int32 layout (SACSPX01), read as before.
+TEST(SuperpixelIoTest, MapsWhoseBandsSpanTooManyLabelsUseInt32Labels) {
+  testing::TempDir dir;
+  const std::string path = (dir / "wide.spx").string();
+  SuperpixelMap map;
+  map.width = 70000;
+  map.height = 1;
+  for (int c = 0; c < map.width; ++c) {
+    map.labels.push_back(c);
+    SuperpixelCluster cluster;
+    cluster.centroid_col = c + 0.5f;
+    cluster.centroid_row = 0.5f;
+    cluster.depth_m = 10.0f;
+    cluster.pixel_count = 1;
+    cluster.valid_count = 1;
+    map.clusters.push_back(cluster);
+  }
+  WriteSuperpixels(path, map, 9);
+  const std::string bytes = Slurp(path);
+  EXPECT_EQ(bytes.substr(0, 8), "SACSPX01");
+  ASSERT_EQ(bytes.size(), 32u + 70000u * 4u + 70000u * 20u);
+  EXPECT_EQ(bytes.substr(32 + 66000 * 4, 4), std::string("\xd0\x01\x01\0", 4));  // 66000 = 0x101d0
+  const SuperpixelMap back = ReadSuperpixels(path);
+  EXPECT_EQ(back.labels, map.labels);
+  EXPECT_EQ(ReadSuperpixelLabelWindow(path, PixelWindow{0, 1, 65999, 66002}),
+            (std::vector<int32_t>{65999, 66000, 66001}));
 }
 
 TEST(SuperpixelIoTest, EmptyMapRoundTrips) {
@@ -179,7 +212,8 @@ TEST(SuperpixelIoTest, CorruptOrTruncatedFilesAreRejectedNamingTheFile) {
   WriteSuperpixels(good_path, MakeMap(24, 20), 3);
   const std::string good = Slurp(good_path);
   const std::string path = (dir / "bad.spx").string();
-  const size_t table = 32 + 24 * 20 * 4;
+  const size_t labels = 32 + 4;  // one band base
+  const size_t table = labels + 24 * 20 * 2;
 
   ExpectAllReadersReject((dir / "missing.spx").string(), "missing file");
 
@@ -211,13 +245,13 @@ TEST(SuperpixelIoTest, CorruptOrTruncatedFilesAreRejectedNamingTheFile) {
   ExpectAllReadersReject(path, "no clusters");
 
   bytes = good;
-  bytes[32 + 4 * 3] = '\x7f';  // row 0, col 3: label 127 > number of clusters
+  bytes[labels + 2 * 3] = '\x7f';  // row 0, col 3: label 127 > number of clusters
   Spit(path, bytes);
   ExpectAllReadersReject(path, "label out of range");
   EXPECT_NO_THROW(ReadSuperpixelRows(path, 1, 20)) << "only the rows read are range-checked";
 
   bytes = good;
-  bytes[32 + 4 * 3] = '\x01';  // row 0, col 3 moved to cluster 1: table counts disagree with the labels
+  bytes[labels + 2 * 3] = '\x01';  // row 0, col 3 moved to cluster 1: table counts disagree with the labels
   Spit(path, bytes);
   EXPECT_THROW(ReadSuperpixels(path), InputError);
 
@@ -230,6 +264,11 @@ TEST(SuperpixelIoTest, CorruptOrTruncatedFilesAreRejectedNamingTheFile) {
   bytes.replace(table + 8, 4, std::string("\x00\x00\xc0\x7f", 4));  // cluster 0 depth NaN
   Spit(path, bytes);
   ExpectAllReadersReject(path, "NaN depth");
+
+  bytes = good;
+  bytes[32] = '\x7f';  // band base 127 > number of clusters
+  Spit(path, bytes);
+  ExpectAllReadersReject(path, "band base out of range");
 }
 
 TEST(SuperpixelIoTest, InconsistentMapsAreNotWritten) {
