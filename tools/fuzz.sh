@@ -14,7 +14,8 @@ shift || true
 fuzz_dir=${SACFUSE_FUZZ_DIR:-$(cd .. && pwd)/scratch/fuzz}
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-  targets=(colmap_text colmap_binary colmap_array openmvs_dmap tiff_depth camera_yaml camera_csv las job_config)
+  targets=(colmap_text colmap_binary colmap_array openmvs_dmap tiff_depth camera_yaml camera_csv las job_config
+           superpixel_cache)
 fi
 command -v clang++ >/dev/null || { echo "fuzz: clang++ missing (tools/install_deps.sh installs it)" >&2; exit 2; }
 

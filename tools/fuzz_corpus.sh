@@ -45,6 +45,12 @@ find "$work/rasters" "$work/sim" \( -name '*.yaml' -o -name '*.yml' \) | while r
 done
 find "$work" -name '*.csv' | head -4 | while read -r f; do seed camera_csv "$f"; done
 find "$work" -name '*.las' | head -4 | while read -r f; do seed las "$f"; done
+# Superpixel caches of a run over the simulated block (the banded 16-bit layout).
+if "$sacfuse" run "$config" --threads 2 > "$work/run.log" 2>&1; then
+  find "$work/sim" -name '*.spx' | sort | head -3 | while read -r f; do seed superpixel_cache "$f"; done
+else
+  echo "fuzz_corpus: the run for superpixel seeds failed (see $work/run.log); no superpixel_cache seeds" >&2
+fi
 # The default config, every key with its comment.
 "$sacfuse" run --print-defaults > "$work/defaults.yaml" 2>/dev/null && seed job_config "$work/defaults.yaml" || true
 

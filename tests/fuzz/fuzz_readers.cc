@@ -22,6 +22,7 @@
 #include "io/openmvs_block.h"
 #include "io/openmvs_dmap.h"
 #include "io/raster_block.h"
+#include "io/superpixel_io.h"
 #include "io/tiff_depth.h"
 
 namespace sacfuse::fuzz {
@@ -149,6 +150,21 @@ void Las(const std::string& bytes) {
 
 void JobConfigText(const std::string& bytes) { ParseJobConfig(bytes, "fuzz.yaml", "/base"); }
 
+// Our superpixel cache (io/superpixel_io.h): a run reads it back from disk, where it may be truncated or corrupt;
+// the header's sizes must match the file length, so what the readers allocate is bounded by the input.
+void SuperpixelCache(const std::string& bytes) {
+  const fs::path path = Scratch() / "view.spx";
+  Write(path, bytes);
+  const SuperpixelFileInfo info = ReadSuperpixelInfo(path.string());
+  ReadSuperpixelClusters(path.string());
+  ReadSuperpixels(path.string());
+  if (info.height > 0) {
+    ReadSuperpixelRows(path.string(), info.height / 2, std::min(info.height, info.height / 2 + 70));
+    ReadSuperpixelLabelWindow(path.string(), PixelWindow{info.height / 2, std::min(info.height, info.height / 2 + 4),
+                                                         info.width / 2, std::min(info.width, info.width / 2 + 4)});
+  }
+}
+
 const std::map<std::string, std::function<void(const std::string&)>>& Targets() {
   static const std::map<std::string, std::function<void(const std::string&)>> targets = {
       {"colmap_text", [](const std::string& b) { ColmapModel(b, ".txt"); }},
@@ -160,6 +176,7 @@ const std::map<std::string, std::function<void(const std::string&)>>& Targets() 
       {"camera_csv", [](const std::string& b) { CameraFile(b, "cameras.csv"); }},
       {"las", Las},
       {"job_config", JobConfigText},
+      {"superpixel_cache", SuperpixelCache},
   };
   return targets;
 }

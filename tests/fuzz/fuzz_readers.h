@@ -13,7 +13,7 @@
 namespace sacfuse::fuzz {
 
 // The target names: colmap_text, colmap_binary, colmap_array, openmvs_dmap, tiff_depth, camera_yaml, camera_csv,
-// las, job_config.
+// las, job_config, superpixel_cache.
 const std::vector<std::string>& TargetNames();
 
 // Runs target `name` on one input. Returns normally when the reader succeeded or threw sacfuse::Error (printed
