@@ -4,8 +4,8 @@
 #
 #   tools/bench/ab_time.sh CONFIG REPEATS BINARY...
 #
-# CONFIG is a block-style sacfuse YAML with an `output:` section whose `dir:` line this script replaces: every run
-# writes into a fresh WORK/out (WORK = $AB_TIME_DIR, default a temporary folder), so each starts cold (superpixels
+# CONFIG is a block-style sacfuse YAML (tools/bench/config_with_output.sh makes its relative paths absolute and
+# replaces output.dir): every run writes into a fresh WORK/out (WORK = $AB_TIME_DIR, default a temporary folder), so each starts cold (superpixels
 # recomputed unless the config names fusion.superpixel_cache_dir). For each repeat and each binary it prints one
 # line: wall and CPU seconds of the job (run_report.json), SAC's stage seconds, the process's peak RSS
 # (/usr/bin/time), and whether the cloud is byte-identical to the first binary's cloud of the same repeat.
@@ -23,8 +23,6 @@ binaries=()
 for b in "$@"; do binaries+=("$(realpath "$b")"); done
 [[ -x /usr/bin/time ]] || { echo "$0: /usr/bin/time not found (Debian package: time)" >&2; exit 2; }
 case "$repeats" in '' | *[!0-9]*) echo "$0: REPEATS must be a number, not '$repeats'" >&2; exit 2 ;; esac
-grep -qE '^output:[[:space:]]*$' "$config" && grep -qE '^[[:space:]]+dir:' "$config" ||
-  { echo "$0: $config needs a block-style output: section with a dir: line" >&2; exit 2; }
 work=${AB_TIME_DIR:-$(mktemp -d)}
 mkdir -p "$work"
 results=$work/results.tsv
@@ -35,10 +33,8 @@ for ((rep = 1; rep <= repeats; ++rep)); do
     b=${binaries[$i]}
     out=$work/out
     rm -rf "$out"
-    # The config with output.dir replaced (only the first dir: line after output:).
-    awk -v out="$out" '/^output:/ { in_out = 1; print; next } /^[A-Za-z_]/ { in_out = 0 }
-      in_out && !done && /^[[:space:]]+dir:/ { print "  dir: \"" out "\""; done = 1; next } { print }' \
-      "$config" > "$work/config.yaml"
+    "$(dirname "$0")/config_with_output.sh" "$config" "$out" > "$work/config.yaml" ||
+      { echo "$0: cannot rewrite $config (see above)" >&2; exit 2; }
     if ! /usr/bin/time -f "%M" -o "$work/time.txt" "$b" run "$work/config.yaml" > "$work/run.log" 2>&1; then
       tail -n 20 "$work/run.log" >&2
       echo "$0: $b failed" >&2

@@ -50,26 +50,9 @@ mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 rm -rf "$OUT/sacfuse" "$OUT/colmap"
 
-# The block's config with every relative path made absolute (they are relative to the config file) and the
-# output moved to OUT/sacfuse. Handles the block-style YAML `sacfuse simulate` writes.
-awk -v block="$BLOCK" -v outdir="$OUT/sacfuse" '
-  function unquote(v) { gsub(/^[ \t]+|[ \t]+$/, "", v); if (v ~ /^".*"$/ || v ~ /^'"'"'.*'"'"'$/) v = substr(v, 2, length(v) - 2); return v }
-  function absolute(v) { if (v == "" || v ~ /^\//) return v; if (v == ".") return block; sub(/^\.\//, "", v); return block "/" v }
-  /^[A-Za-z_]+:[ \t]*\{/ { print "flow-style section not supported: " $0 > "/dev/stderr"; bad = 1 }
-  /^[A-Za-z_]+:/ { section = $1; sub(/:.*/, "", section) }
-  {
-    line = $0
-    if (match(line, /^  [A-Za-z_]+:/)) {
-      key = substr(line, 3, RLENGTH - 3); value = substr(line, RLENGTH + 1); sub(/[ \t]+#.*$/, "", value)
-      full = section "." key
-      if (full == "output.dir") { line = "  dir: \"" outdir "\""; dir_set = 1 }
-      else if (full == "input.path" || full == "evaluation.reference" || full == "evaluation.mask" ||
-               full == "fusion.superpixel_cache_dir") line = "  " key ": \"" absolute(unquote(value)) "\""
-    }
-    print line
-  }
-  END { if (bad) exit 3; if (!dir_set) { print "no output.dir key found" > "/dev/stderr"; exit 3 } }
-' "$CONFIG" > "$OUT/sacfuse.yaml" || { echo "$0: cannot rewrite $CONFIG for OUT_DIR (see above)" >&2; exit 2; }
+# The block's config with every relative path made absolute and the output moved to OUT/sacfuse.
+"$(dirname "$0")/config_with_output.sh" "$CONFIG" "$OUT/sacfuse" > "$OUT/sacfuse.yaml" ||
+  { echo "$0: cannot rewrite $CONFIG for OUT_DIR (see above)" >&2; exit 2; }
 
 NPROC=$(nproc)
 echo "block $BLOCK, $THREADS threads ($NPROC cores), outputs in $OUT"
