@@ -49,10 +49,15 @@ std::vector<std::vector<uint32_t>> AllOthers(size_t n) {
   return out;
 }
 
-TEST(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses) {
+// The floater block with every other view judging each view.
+class PointVerdictsTest : public ::testing::Test {
+ protected:
   const SyntheticBlock block = BlockWithFloater();
-  const auto views = block.SacViews();
-  const auto others = AllOthers(views.size());
+  const std::vector<SacView> views = block.SacViews();
+  const std::vector<std::vector<uint32_t>> others = AllOthers(views.size());
+};
+
+TEST_F(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses) {
   SacOptions options;
   options.min_consistent_views = 1;  // isolate the free-space test
   options.free_space_min_views = 2;
@@ -68,10 +73,7 @@ TEST(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses) 
   EXPECT_EQ(PointVerdicts(views, others, others, {}, options).At(0, 45, 60), PointVerdict::kPasses);
 }
 
-TEST(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
-  const SyntheticBlock block = BlockWithFloater();
-  const auto views = block.SacViews();
-  const auto others = AllOthers(views.size());
+TEST_F(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
   SacOptions options;
   options.min_consistent_views = 2;
   options.free_space_min_views = 0;
@@ -88,10 +90,7 @@ TEST(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
 }
 
 // Verdicts are judged on first ask and remembered: asked in any order, from many threads, they are the same.
-TEST(PointVerdictsTest, VerdictsDoNotDependOnTheOrderTheyAreAskedIn) {
-  const SyntheticBlock block = BlockWithFloater();
-  const auto views = block.SacViews();
-  const auto others = AllOthers(views.size());
+TEST_F(PointVerdictsTest, VerdictsDoNotDependOnTheOrderTheyAreAskedIn) {
   SacOptions options;
   options.min_consistent_views = 2;
   options.free_space_min_views = 2;
