@@ -23,15 +23,15 @@ DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_wor
   return LookupDepthInCamera(view, view.PointInCamera(point_in_world));
 }
 
-DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& p) {
+DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& point_in_camera) {
   DepthLookup out;
-  if (p.z() <= 0) return out;
-  const Eigen::Vector2d uv = view.depth_camera.Project(p);
+  if (point_in_camera.z() <= 0) return out;
+  const Eigen::Vector2d uv = view.depth_camera.Project(point_in_camera);
   if (!(uv.x() >= 0 && uv.y() >= 0 && uv.x() < view.depth->width && uv.y() < view.depth->height)) return out;
   out.inside = true;
   out.col = static_cast<int>(uv.x());
   out.row = static_cast<int>(uv.y());
-  out.z_m = p.z();
+  out.z_m = point_in_camera.z();
   out.stored_depth_m = view.depth->at(out.row, out.col);
   return out;
 }
