@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -18,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/atomic_file.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -61,14 +63,20 @@ double FileAgeS(const std::string& path) {
   return static_cast<double>(NowUnixS() - st.st_mtime);
 }
 
+// An unreadable claim (a file that is not claim JSON) counts as live for at most this long after its last
+// modification. Claims appear fully written (CreateExclusive), so one that cannot be parsed is left by a file
+// system without hard links (the fallback below, killed between create and write) or is damaged: either way no
+// worker is writing it after a minute, and waiting tiling.claim_timeout_s (6 h) for it would stall a resumed run.
+constexpr double kUnreadableClaimGraceS = 60.0;
+
 // Live claim content at `path` (parsed or not)? Missing file: false.
 bool ContentIsLive(const std::string& path, const std::string& text, double timeout_s) {
   if (const auto c = ParseClaim(text)) return !ClaimIsStale(*c, timeout_s);
-  return FileAgeS(path) <= timeout_s;  // being written, or garbage: live until it times out
+  return FileAgeS(path) <= std::min(timeout_s, kUnreadableClaimGraceS);
 }
 
-// Creates the claim file exclusively; false when it exists.
-bool CreateExclusive(const std::string& path, const std::string& contents) {
+// Writes `contents` to a new file at `path` (fsynced) with O_CREAT|O_EXCL; false when it exists.
+bool CreateAndWriteExclusive(const std::string& path, const std::string& contents) {
   const int fd = ::open(path.c_str(), O_CREAT | O_EXCL | O_WRONLY | O_CLOEXEC, 0644);
   if (fd < 0) {
     if (errno == EEXIST) return false;
@@ -82,6 +90,29 @@ bool CreateExclusive(const std::string& path, const std::string& contents) {
     throw Error(path + ": cannot write claim");
   }
   return true;
+}
+
+// Creates the claim file exclusively and whole; false when it exists. The contents go to a temporary sibling
+// (io/atomic_file.h names it, so a killed worker's leftover is removed like any other) that is hard-linked onto
+// the claim path: link() fails with EEXIST atomically, also on NFS, so a claim is never seen empty or half
+// written. A worker killed between the create and the write of an O_EXCL claim left an empty claim that held
+// its tile for claim_timeout_s (a resumed run waited on it). File systems without hard links fall back to
+// O_EXCL and write.
+bool CreateExclusive(const std::string& path, const std::string& contents) {
+  int link_errno = ENOENT;
+  // ENOENT: a worker starting in the same folder saw no live claim and removed our temporary file; try again.
+  for (int i = 0; i < kTakeOverAttempts && link_errno == ENOENT; ++i) {
+    const std::string temp = TemporaryPathFor(path);
+    if (!CreateAndWriteExclusive(temp, contents)) throw Error(temp + ": temporary claim exists");
+    link_errno = ::link(temp.c_str(), path.c_str()) == 0 ? 0 : errno;
+    ::unlink(temp.c_str());
+  }
+  if (link_errno == 0) return true;
+  if (link_errno == EEXIST) return false;
+  if (link_errno == EPERM || link_errno == EOPNOTSUPP || link_errno == ENOSYS) {
+    return CreateAndWriteExclusive(path, contents);
+  }
+  throw Error(path + ": cannot create claim: " + std::strerror(link_errno));
 }
 
 }  // namespace

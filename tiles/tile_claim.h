@@ -1,13 +1,14 @@
 #pragma once
 // Atomic per-tile claims, so that several processes or machines sharing DIR can work through one tile list
-// without computing a tile twice. A claim is the file DIR/tiles/<id>.claim, created with O_CREAT|O_EXCL (atomic
-// on local file systems and NFSv3+), holding JSON {host, pid, start_unix_s, token}.
-//   live   the file exists and is not stale (an unreadable or half-written claim counts as live until it is
-//          older than the timeout by its modification time);
+// without computing a tile twice. A claim is the file DIR/tiles/<id>.claim, holding JSON {host, pid,
+// start_unix_s, token}. It appears whole: written to a temporary sibling, then hard-linked into place (link()
+// fails with EEXIST atomically, on local file systems and NFS; O_CREAT|O_EXCL and write where links are refused).
+//   live   the file exists and is not stale (an unreadable claim counts as live for one minute after its last
+//          modification, then as stale);
 //   stale  its pid no longer exists on this host (kill(pid, 0) fails with ESRCH; pids of other hosts cannot be
 //          checked), or it is older than tiling.claim_timeout_s (default 6 h).
 // A stale claim is taken over: renamed to a unique "<id>.claim.stale-<host>-<pid>-<n>" (atomic), removed, and
-// the claim created again with O_EXCL; if the renamed file turns out to be a fresh claim another worker created
+// the claim created again; if the renamed file turns out to be a fresh claim another worker created
 // in the meantime, it is linked back in place. A claim is released by its owner only (matched by token).
 #include <cstddef>
 #include <cstdint>

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 
@@ -111,12 +112,39 @@ TEST(TileClaimTest, OldClaimOfAnotherHostIsTakenOverOnlyAfterTimeout) {
   EXPECT_TRUE(old.took_over);
 }
 
-TEST(TileClaimTest, HalfWrittenClaimCountsAsLive) {
+TEST(TileClaimTest, UnreadableClaimIsLiveForOneMinuteThenTakenOver) {
   TempDir dir;
   const std::string d = dir.path().string();
-  std::ofstream(TileClaimPath(d, "4_4")) << "";  // created, not yet written
+  const std::string path = TileClaimPath(d, "4_4");
+  std::ofstream(path) << "";  // what a worker killed between create and write left before claims were linked
   EXPECT_TRUE(TileClaimIsLive(d, "4_4", kHour));
   EXPECT_FALSE(TryClaimTile(d, "4_4", kHour).claimed);
+  fs::last_write_time(path, fs::last_write_time(path) - std::chrono::seconds(120));
+  EXPECT_FALSE(TileClaimIsLive(d, "4_4", kHour));  // not 6 h: a resumed run does not wait on it
+  const ClaimAttempt attempt = TryClaimTile(d, "4_4", kHour);
+  EXPECT_TRUE(attempt.claimed);
+  EXPECT_TRUE(attempt.took_over);
+  EXPECT_EQ(ReadTileClaim(d, "4_4")->token, attempt.token);
+}
+
+TEST(TileClaimTest, ClaimAppearsWholeAndLeavesNoTemporaryFile) {
+  TempDir dir;
+  const std::string d = dir.path().string();
+  for (int i = 0; i < 20; ++i) {
+    const std::string id = "0_" + std::to_string(i);
+    const ClaimAttempt attempt = TryClaimTile(d, id, kHour);
+    ASSERT_TRUE(attempt.claimed);
+    const auto claim = ReadTileClaim(d, id);
+    ASSERT_TRUE(claim.has_value());
+    EXPECT_EQ(claim->pid, static_cast<int64_t>(::getpid()));
+    EXPECT_EQ(claim->token, attempt.token);
+  }
+  size_t files = 0;
+  for (const auto& e : fs::directory_iterator(d)) {
+    EXPECT_EQ(e.path().extension(), ".claim") << e.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 20u);
 }
 
 }  // namespace
