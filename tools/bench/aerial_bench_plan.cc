@@ -24,6 +24,10 @@ const std::vector<AerialDefinition>& Definitions() {
       {"montpellier_e25", "ign_montpellier", "test_data_*.las", {"--gsd", "0.25", "--error-scale", "2.5"}},
       {"zurich", "lastools", "zurich.las", {"--gsd", "0.125", "--cell", "0.25"}},
       {"zurich_e25", "lastools", "zurich.las", {"--gsd", "0.125", "--cell", "0.25", "--error-scale", "2.5"}},
+      // The third city: Saint-Barthelemy (IGN, 100 x 100 m of a built-up area, ~25 points/m2), shared as LAZ only.
+      {"stbarth", "ign_tiles", "St_Barth_RGAF09_UTM20N_IGN_1988_SB_subset_100m.laz", {"--gsd", "0.125", "--cell", "0.25"}},
+      {"stbarth_e25", "ign_tiles", "St_Barth_RGAF09_UTM20N_IGN_1988_SB_subset_100m.laz",
+       {"--gsd", "0.125", "--cell", "0.25", "--error-scale", "2.5"}},
   };
   return d;
 }
@@ -100,7 +104,10 @@ AerialPlan BuildAerialPlan(const QualityBenchOptions& o) {
       plan.skipped.push_back({scene, "LiDAR file not found: " + (folder / d->lidar_pattern).string()});
       continue;
     }
-    AerialBlockSpec spec{d->name, files};
+    AerialBlockSpec spec{d->name, files, {}};
+    for (const std::string& file : files) {
+      if (fs::path(file).extension() == ".laz") spec.laz_inputs.push_back(file);
+    }
     spec.make_args.insert(spec.make_args.end(), d->options.begin(), d->options.end());
     plan.blocks.push_back(std::move(spec));
   }

@@ -1,4 +1,4 @@
-// Which aerial-bench blocks `sacfuse bench` makes: the four definitions of the README, LiDAR
+// Which aerial-bench blocks `sacfuse bench` makes: the six definitions of the README, LiDAR
 // files expanded, and blocks skipped with a reason when the aerial-bench folder or a LiDAR file is missing.
 #include <fstream>
 
@@ -26,6 +26,7 @@ QualityBenchOptions Options(const testing::TempDir& dir) {
   Touch(dir / "lidar/ign_montpellier/test_data_1.las");
   Touch(dir / "lidar/ign_montpellier/other.las");
   Touch(dir / "lidar/lastools/zurich.las");
+  Touch(dir / "lidar/ign_tiles/St_Barth_RGAF09_UTM20N_IGN_1988_SB_subset_100m.laz");
   QualityBenchOptions o;
   o.aerial_bench_dir = (dir / "ab").string();
   o.lidar_dir = (dir / "lidar").string();
@@ -33,11 +34,11 @@ QualityBenchOptions Options(const testing::TempDir& dir) {
   return o;
 }
 
-TEST(AerialBenchPlanTest, DefaultBlocksAreTheFourDefinitions) {
+TEST(AerialBenchPlanTest, DefaultBlocksAreTheSixDefinitions) {
   testing::TempDir dir;
   const AerialPlan plan = BuildAerialPlan(Options(dir));
   EXPECT_TRUE(plan.skipped.empty());
-  ASSERT_EQ(plan.blocks.size(), 4u);
+  ASSERT_EQ(plan.blocks.size(), 6u);
   const std::string m1 = (dir / "lidar/ign_montpellier/test_data_1.las").string();
   const std::string m2 = (dir / "lidar/ign_montpellier/test_data_2.las").string();
   const std::string z = (dir / "lidar/lastools/zurich.las").string();
@@ -47,6 +48,14 @@ TEST(AerialBenchPlanTest, DefaultBlocksAreTheFourDefinitions) {
   EXPECT_EQ(plan.blocks[2].make_args, (std::vector<std::string>{z, "--gsd", "0.125", "--cell", "0.25"}));
   EXPECT_EQ(plan.blocks[3].make_args,
             (std::vector<std::string>{z, "--gsd", "0.125", "--cell", "0.25", "--error-scale", "2.5"}));
+  for (size_t i = 0; i < 4; ++i) EXPECT_TRUE(plan.blocks[i].laz_inputs.empty()) << plan.blocks[i].name;
+  // The third city is shared as LAZ only: listed for decoding before make_block.py.
+  const std::string sb = (dir / "lidar/ign_tiles/St_Barth_RGAF09_UTM20N_IGN_1988_SB_subset_100m.laz").string();
+  EXPECT_EQ(plan.blocks[4].name, "stbarth");
+  EXPECT_EQ(plan.blocks[4].make_args, (std::vector<std::string>{sb, "--gsd", "0.125", "--cell", "0.25"}));
+  EXPECT_EQ(plan.blocks[4].laz_inputs, (std::vector<std::string>{sb}));
+  EXPECT_EQ(plan.blocks[5].name, "stbarth_e25");
+  EXPECT_EQ(plan.blocks[5].make_args.back(), "2.5");
   EXPECT_EQ(plan.python, "/bin/sh");
 }
 
@@ -73,8 +82,9 @@ TEST(AerialBenchPlanTest, MissingLidarFileSkipsOnlyItsBlocks) {
   QualityBenchOptions o = Options(dir);
   fs::remove(dir / "lidar/lastools/zurich.las");
   const AerialPlan plan = BuildAerialPlan(o);
-  ASSERT_EQ(plan.blocks.size(), 2u);
+  ASSERT_EQ(plan.blocks.size(), 4u);
   EXPECT_EQ(plan.blocks[1].name, "montpellier_e25");
+  EXPECT_EQ(plan.blocks[2].name, "stbarth");
   ASSERT_EQ(plan.skipped.size(), 2u);
   EXPECT_EQ(plan.skipped[0].reason, "LiDAR file not found: " + (dir / "lidar/lastools/zurich.las").string());
 }

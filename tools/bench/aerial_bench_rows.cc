@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/las_copy.h"
 #include "tools/bench/quality_bench_format.h"
 #include "tools/bench/quality_bench_row.h"
 
@@ -36,9 +37,20 @@ std::string EnsureBlock(const AerialBlockSpec& b, const AerialContext& c, const 
   if (fs::is_regular_file(dir / "meta.json", ec)) return "";
   out << "making aerial-bench block " << b.name << " ..." << std::flush;
   std::vector<std::string> argv = {c.python, Script(c, "make_block.py")};
-  argv.insert(argv.end(), b.make_args.begin(), b.make_args.end());
-  argv.insert(argv.end(), {"--out", dir.string(), "--force"});
   try {
+    for (const std::string& arg : b.make_args) {
+      if (std::find(b.laz_inputs.begin(), b.laz_inputs.end(), arg) == b.laz_inputs.end()) {
+        argv.push_back(arg);
+        continue;
+      }
+      const fs::path decoded = fs::path(c.root) / "lidar" / (fs::path(arg).stem().string() + ".las");
+      if (!fs::is_regular_file(decoded, ec)) {
+        fs::create_directories(decoded.parent_path());
+        CopyLasFile(arg, decoded.string(), /*compressed=*/false);
+      }
+      argv.push_back(decoded.string());
+    }
+    argv.insert(argv.end(), {"--out", dir.string(), "--force"});
     const ChildResult r = RunRowStep(argv, (fs::path(c.root) / (b.name + ".make.log")).string());
     if (!fs::is_regular_file(dir / "meta.json", ec)) throw Error("make_block.py wrote no " + (dir / "meta.json").string());
     out << " " << FormatFixed(r.wall_s, 1) << " s\n";

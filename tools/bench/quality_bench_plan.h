@@ -27,7 +27,8 @@ struct QualityBenchOptions {
   bool force = false;                       // re-run rows whose result exists
   bool keep_clouds = false;                 // keep every row's fused LAS (default: deleted once scored)
   // aerial-bench (aerial_bench_plan.h): its blocks, run beside ours; empty = off (--aerial-bench off, --quick).
-  std::vector<std::string> aerial_blocks = {"montpellier", "montpellier_e25", "zurich", "zurich_e25"};
+  std::vector<std::string> aerial_blocks = {"montpellier", "montpellier_e25", "zurich", "zurich_e25", "stbarth",
+                                            "stbarth_e25"};
   std::string aerial_bench_dir;             // the aerial-bench folder; "" = not found (its blocks are skipped)
   std::string python = "/usr/bin/python3";  // runs its scripts (Debian's numpy, scipy, opencv, open3d)
 };
