@@ -105,6 +105,10 @@ bool CreateExclusive(const std::string& path, const std::string& contents) {
     const std::string temp = TemporaryPathFor(path);
     if (!CreateAndWriteExclusive(temp, contents)) throw Error(temp + ": temporary claim exists");
     link_errno = ::link(temp.c_str(), path.c_str()) == 0 ? 0 : errno;
+    // NFS may report an error for a link it made (a retransmitted request): the temporary file's link count
+    // says whether the claim is ours (open(2)'s note on O_EXCL over NFS).
+    struct stat st {};
+    if (link_errno != 0 && ::stat(temp.c_str(), &st) == 0 && st.st_nlink == 2) link_errno = 0;
     ::unlink(temp.c_str());
   }
   if (link_errno == 0) return true;
