@@ -66,7 +66,9 @@ struct LasWriter::Impl {
   FILE* file = nullptr;
   std::unique_ptr<LazChunkWriter> laz;  // set when writing LAZ
   size_t buffer_records = kBufferRecords;
-  std::vector<uint8_t> buffer;  // buffer_records records
+  // Up to buffer_records records; grown as records arrive (LAZ: 8 chunks of 50,000, 14 MB at 36 B a record, so a
+  // small tile's writer does not hold the whole batch).
+  std::vector<uint8_t> buffer;
   size_t buffered = 0;          // records in buffer
   uint64_t count = 0;
   std::array<uint64_t, 15> by_return = {};
@@ -132,6 +134,9 @@ struct LasWriter::Impl {
     offset = use_offset;
     for (size_t i = 0; i < n; ++i) {
       const LasPoint point = get(i);
+      if ((buffered + 1) * record_length > buffer.size()) {
+        buffer.resize(std::min(buffer_records, std::max<size_t>(4096, 2 * buffered)) * record_length);
+      }
       uint8_t* record = buffer.data() + buffered * record_length;
       EncodeOne(point, count, use_offset, record);
       for (int a = 0; a < 3; ++a) {
@@ -320,7 +325,6 @@ void LasWriter::Impl::Open() {
     Discard();
     throw;
   }
-  buffer.resize(buffer_records * record_length);
 }
 
 void LasWriter::Impl::Discard() {
