@@ -29,7 +29,7 @@ LasWriterOptions FusedCloudOptions(const JobConfig& config, const TilePlan& plan
 
 LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan) {
   LasWriterOptions las = FusedCloudOptions(config, plan);
-  las.compressed = false;
+  las.compressed = true;
   return las;
 }
 

@@ -11,7 +11,7 @@ LasWriterOptions MakeLasOptions(const OutputOptions& output);
 // The same plus the CRS records of config `crs` (io/las_crs.h).
 LasWriterOptions MakeLasOptions(const JobConfig& config);
 // A tiled run's: the merged cloud's (output.format) with the plan's shared offset (tiles/tile_manifest.h), and the
-// tiles' (the same, always uncompressed LAS: intermediate files).
+// tiles' (the same, always LAZ: a ninth of the disk of LAS for intermediate files, tiles/tile_marker.h).
 LasWriterOptions FusedCloudOptions(const JobConfig& config, const TilePlan& plan);
 LasWriterOptions TileLasOptions(const JobConfig& config, const TilePlan& plan);
 

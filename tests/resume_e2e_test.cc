@@ -161,12 +161,12 @@ TEST_F(ResumeEndToEndTest, DeletedTileIsPendingAndTruncatedTileIsRecomputed) {
   fs::path las;
   for (const auto& [tile, marker] : DoneMarkers(Tiles("a"))) {
     if (nlohmann::json::parse(marker).at("points").get<uint64_t>() > 1000 && tile != id)
-      las = Tiles("a") / (tile + ".las");
+      las = Tiles("a") / (tile + ".laz");
   }
   ASSERT_FALSE(las.empty());
   const std::string truncated_id = las.stem().string();
   // (d) delete one tile's LAS: status lists it as pending.
-  const fs::path deleted = Tiles("a") / (id + ".las");
+  const fs::path deleted = Tiles("a") / (id + ".laz");
   const bool had_las = fs::exists(deleted);
   if (had_las) fs::remove(deleted);
   std::string out;
@@ -195,7 +195,7 @@ TEST_F(ResumeEndToEndTest, FailedTileIsRecordedAndTheOthersGoOn) {
     if (nlohmann::json::parse(marker).at("points").get<uint64_t>() > 0) id = tile;
   }
   ASSERT_FALSE(id.empty());
-  const fs::path las = Tiles("a") / (id + ".las");
+  const fs::path las = Tiles("a") / (id + ".laz");
   fs::remove(las);
   fs::create_directories(las / "squatter");
   const std::string previous = ReadFileBytes(Out("a") / "fused.laz");

@@ -109,7 +109,7 @@ TileInputs TileInputsOf(const PlannedTile& tile, const std::vector<View>& views,
   return inputs;
 }
 
-std::string TileLasPath(const std::string& tiles_dir, const std::string& id) { return Path(tiles_dir, id + ".las"); }
+std::string TileLasPath(const std::string& tiles_dir, const std::string& id) { return Path(tiles_dir, id + ".laz"); }
 std::string TileDonePath(const std::string& tiles_dir, const std::string& id) {
   return Path(tiles_dir, id + ".done.json");
 }
@@ -192,21 +192,22 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
     }
   }
   const std::string las = TileLasPath(tiles_dir, id);
+  const std::string name = fs::path(las).filename().string();
   std::error_code ec;
   if (m->points == 0) {
-    if (fs::exists(las, ec)) return fail("marker says empty but " + id + ".las exists");
+    if (fs::exists(las, ec)) return fail("marker says empty but " + name + " exists");
     return {true, "", {}};
   }
   const auto size = fs::file_size(las, ec);
-  if (ec) return fail(id + ".las missing");
+  if (ec) return fail(name + " missing");
   if (size != m->file_size) {
-    return fail(id + ".las size " + std::to_string(size) + " != " + std::to_string(m->file_size));
+    return fail(name + " size " + std::to_string(size) + " != " + std::to_string(m->file_size));
   }
   try {
     const uint64_t count = LasReader(las).header().point_count;
     if (count != m->points)
-      return fail(id + ".las count " + std::to_string(count) + " != " + std::to_string(m->points));
-    if (full_checksum && HexDigest(Fnv1a64File(las)) != m->checksum) return fail(id + ".las checksum mismatch");
+      return fail(name + " count " + std::to_string(count) + " != " + std::to_string(m->points));
+    if (full_checksum && HexDigest(Fnv1a64File(las)) != m->checksum) return fail(name + " checksum mismatch");
   } catch (const Error& e) {
     return fail(e.what());
   }
@@ -230,6 +231,7 @@ void ClearTileState(const std::string& tiles_dir, const std::string& id) {
   fs::remove(TileDonePath(tiles_dir, id), ec);
   fs::remove(TileFailedPath(tiles_dir, id), ec);
   fs::remove(TileLasPath(tiles_dir, id), ec);
+  fs::remove(Path(tiles_dir, id + ".las"), ec);  // written by versions before the tiles were LAZ
 }
 
 }  // namespace sacfuse

@@ -1,7 +1,9 @@
 #pragma once
 // Per-tile state of a tiled run, on disk under DIR/tiles/ (the state is the files themselves):
-//   <id>.las        the tile's core points (absent for a tile whose core got no points)
-//   <id>.done.json  written atomically AFTER <id>.las is renamed into place: count, size, bounds, checksum
+//   <id>.laz        the tile's core points, LAZ (absent for a tile whose core got no points). Compressed: at
+//                   Dortmund scale the tile files were a third of a run's disk (issue 13). Tiles of versions that
+//                   wrote <id>.las are not done for this one (recomputed; ClearTileState removes the old file).
+//   <id>.done.json  written atomically AFTER <id>.laz is renamed into place: count, size, bounds, checksum
 //   <id>.failed.json  why the tile's last attempt threw
 // A tile is done only when its marker parses, names the current result-settings hash, its inputs (below) are the
 // current ones, and its LAS file exists with the recorded size, a readable header with the recorded count, and
@@ -42,8 +44,8 @@ struct TileDoneMarker {
   std::string id;
   std::string config_hash;  // ResultSettingsHash of the run that wrote it
   uint64_t points = 0;      // 0: no LAS file
-  uint64_t file_size = 0;   // bytes of <id>.las
-  std::string checksum;     // FNV-1a 64 of every byte of <id>.las, hex ("" when points == 0)
+  uint64_t file_size = 0;   // bytes of <id>.laz
+  std::string checksum;     // FNV-1a 64 of every byte of <id>.laz, hex ("" when points == 0)
   std::array<double, 3> min = {0, 0, 0}, max = {0, 0, 0};  // header bounds
   uint64_t views = 0;                                      // views the tile used
   double seconds = 0.0;                                    // wall time of the tile
@@ -60,6 +62,7 @@ struct TileCheck {
   std::vector<std::string> input_changes;
 };
 
+// DIR/tiles/<id>.laz: the tile's points (a LAS-format file, compressed).
 std::string TileLasPath(const std::string& tiles_dir, const std::string& id);
 std::string TileDonePath(const std::string& tiles_dir, const std::string& id);
 std::string TileFailedPath(const std::string& tiles_dir, const std::string& id);
@@ -77,7 +80,7 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
 
 void WriteTileFailedMarker(const std::string& tiles_dir, const std::string& id, const std::string& reason);
 std::optional<std::string> ReadTileFailedReason(const std::string& tiles_dir, const std::string& id);
-// Removes a tile's done/failed markers and LAS (before it is recomputed).
+// Removes a tile's done/failed markers and point file (before it is recomputed), and an <id>.las of an older version.
 void ClearTileState(const std::string& tiles_dir, const std::string& id);
 
 

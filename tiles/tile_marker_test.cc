@@ -100,8 +100,11 @@ TEST_F(TileMarkerTest, EmptyTileIsDoneWithoutLasButNotWithAStrayOne) {
 TEST_F(TileMarkerTest, FailedMarkerAndClearingAndTemporaryFiles) {
   WriteTileFailedMarker(Dir(), "3_4", "depth map unreadable");
   EXPECT_EQ(ReadTileFailedReason(Dir(), "3_4").value_or(""), "depth map unreadable");
+  std::ofstream(dir_ / "3_4.las") << "tile of a version before LAZ tiles";
   ClearTileState(Dir(), "3_4");
   EXPECT_FALSE(fs::exists(Las()));
+  EXPECT_FALSE(fs::exists(dir_ / "3_4.las"));
+  EXPECT_EQ(fs::path(TileLasPath(Dir(), "3_4")).filename(), "3_4.laz");
   EXPECT_FALSE(ReadTileFailedReason(Dir(), "3_4"));
   EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
   std::ofstream(Las() + ".tmp-123-0") << "partial";
