@@ -157,9 +157,12 @@ std::vector<AerialRow> PeerRows(const AerialBlockSpec& b, const AerialContext& c
     error = e.what();
   }
   std::vector<AerialRow> rows;
-  for (const std::string& m : AerialPeerMethods(c.colmap)) {
-    AerialRow row{b.name, m, {}, {}};
+  for (const std::string& m : AerialPeerMethods(true)) {
     const auto it = peers.find(m);
+    // COLMAP rows off (--colmap off, or colmap not installed): COLMAP's row is still shown when the block's
+    // peers.json has it, so that "best peer" and half-way are judged against every peer measured.
+    if (m == "colmap_best" && !c.colmap && (it == peers.end() || !it->second.ok)) continue;
+    AerialRow row{b.name, m, {}, {}};
     if (it == peers.end()) {
       row.result.error = error.empty() ? "peers.py wrote no " + m + " row in " + (block_dir / "peers.json").string()
                                        : error;

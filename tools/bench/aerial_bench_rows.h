@@ -7,7 +7,8 @@
 //    --json-only`; recorded in its row.json with a key (config, command, block arguments) and reused as the other
 //    rows are (resume, --force);
 //  * the peers: `peers.py --block BLOCK --methods tsdf,union,oracle[,colmap_best --grid ...]`, only for methods
-//    BLOCK/peers.json lacks (or has failed); their rows are read from peers.json.
+//    BLOCK/peers.json lacks (or has failed); their rows are read from peers.json (colmap_best's also without
+//    `colmap`, when peers.json has it from an earlier run).
 // A failing step fails its rows (with the error) and the bench goes on.
 #include <ostream>
 #include <string>

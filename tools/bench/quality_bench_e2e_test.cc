@@ -161,6 +161,52 @@ TEST(QualityBenchEndToEndTest, FailingAerialBlockIsRecordedAndTheBenchGoesOn) {
   EXPECT_NE(testing::ReadFileBytes(out / "bench.md").find("- aerial-bench / zurich / sacfuse: "), std::string::npos);
 }
 
+// COLMAP rows off, but the block's peers.json has COLMAP's row from an earlier run: it is shown (reused), so the
+// best peer and the half-way line are judged against it; no aerial-bench script runs (they would fail).
+TEST(QualityBenchEndToEndTest, ColmapRowOfPeersJsonIsShownWithColmapOff) {
+  testing::TempDir dir;
+  fs::create_directories(dir / "ab");
+  for (const char* script : {"make_block.py", "peers.py", "score.py"}) {
+    std::ofstream(dir / "ab" / script) << "import sys\nsys.exit(3)\n";
+  }
+  fs::create_directories(dir / "lidar" / "lastools");
+  std::ofstream(dir / "lidar" / "lastools" / "zurich.las") << "x";
+  const fs::path block = dir / "bench" / "aerial" / "zurich";
+  fs::create_directories(block);
+  std::ofstream(block / "meta.json") << "{}";
+  const auto peer = [](const std::string& method, double f1) {
+    nlohmann::json score = {{"protocol", "v2"}, {"gsd", 0.125}, {"thresholds", {0.25, 0.625}},
+                            {"points_in_mask", 1000}, {"density_per_m2", 10.0},
+                            {"scores", {{{"tau", 0.25}, {"f1", f1}}, {{"tau", 0.625}, {"f1", 0.99}}}},
+                            {"diagnostics_v2", {{"tau", 0.25}, {"above_top", 0.01}}}};
+    return nlohmann::json{{"method", method}, {"returncode", 0}, {"wall_s", 1.0}, {"peak_rss_mb", 10.0},
+                          {"score", score}};
+  };
+  nlohmann::json peers = {{"gsd", 0.125}, {"peers", nlohmann::json::array()}};
+  peers["peers"] = {peer("colmap_best", 0.90), peer("tsdf", 0.80), peer("union", 0.70), peer("oracle", 0.95)};
+  std::ofstream(block / "peers.json") << peers.dump();
+  std::string log;
+  BenchWithAerial(dir / "lidar", dir / "ab", "zurich", dir / "bench", &log);  // sacfuse's row fails: fake block
+  EXPECT_EQ(log.find("aerial-bench peers on"), std::string::npos) << "peers.py ran: " << log;
+  const nlohmann::json j = ReadJsonFile(dir / "bench" / "bench.json");
+  std::map<std::string, nlohmann::json> rows;
+  for (const auto& r : j["aerial_rows"]) rows[r["method"].get<std::string>()] = r;
+  ASSERT_EQ(rows.size(), 5u) << j["aerial_rows"].dump(1);
+  EXPECT_EQ(rows.at("colmap_best")["status"], "ok");
+  EXPECT_EQ(rows.at("colmap_best")["reused"], true);
+  EXPECT_DOUBLE_EQ(rows.at("colmap_best")["f1_2gsd_pct"].get<double>(), 90.0);
+  EXPECT_EQ(rows.at("sacfuse")["status"], "failed");
+  // Without COLMAP's row in peers.json, --colmap off shows none.
+  peers["peers"].erase(0);
+  std::ofstream(block / "peers.json") << peers.dump();
+  BenchWithAerial(dir / "lidar", dir / "ab", "zurich", dir / "bench", &log);
+  const nlohmann::json k = ReadJsonFile(dir / "bench" / "bench.json");
+  size_t colmap_rows = 0;
+  for (const auto& r : k["aerial_rows"]) colmap_rows += r["method"] == "colmap_best" ? 1 : 0;
+  EXPECT_EQ(colmap_rows, 0u);
+  EXPECT_EQ(k["aerial_rows"].size(), 4u);
+}
+
 TEST(QualityBenchEndToEndTest, FailingRowsAreRecordedAndTheBenchGoesOn) {
   testing::TempDir dir;
   const fs::path fake = dir / "fake_colmap";
