@@ -9,25 +9,16 @@
 #include "core/error.h"
 #include "io/las_reader.h"
 #include "io/las_writer.h"
+#include "tests/support/las_points.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
 namespace {
 
+using testing::ExpectSamePoints;
+
 namespace fs = std::filesystem;
 using testing::TempDir;
-
-void ExpectSamePoints(const std::vector<LasPoint>& a, const std::vector<LasPoint>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  for (size_t i = 0; i < a.size(); ++i) {
-    EXPECT_EQ(a[i].xyz, b[i].xyz) << i;
-    EXPECT_EQ(a[i].classification, b[i].classification) << i;
-    EXPECT_EQ(a[i].intensity, b[i].intensity) << i;
-    EXPECT_EQ(a[i].return_number, b[i].return_number) << i;
-    EXPECT_EQ(a[i].gps_time, b[i].gps_time) << i;
-    EXPECT_EQ(a[i].point_source_id, b[i].point_source_id) << i;
-  }
-}
 
 // A LAZ with UTM-sized coordinates on a 1 cm grid, format 1 (as the St Barth tile): the copy is LAS with the
 // same format, scale and offset, and the same points.

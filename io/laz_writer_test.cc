@@ -16,10 +16,13 @@
 #include "io/las_reader.h"
 #include "io/las_writer.h"
 #include "io/laz_chunk_table.h"
+#include "tests/support/las_points.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
 namespace {
+
+using testing::ExpectSamePoints;
 
 namespace fs = std::filesystem;
 namespace lf = las_format;
@@ -87,24 +90,6 @@ void Write(const fs::path& path, int minor, int pdrf, const std::vector<LasPoint
     at += n;
   }
   w.Close();
-}
-
-void ExpectSamePoints(const std::vector<LasPoint>& a, const std::vector<LasPoint>& b) {
-  ASSERT_EQ(a.size(), b.size());
-  size_t bad = 0;
-  for (size_t i = 0; i < a.size(); ++i) {
-    const LasPoint& p = a[i];
-    const LasPoint& q = b[i];
-    const bool same = p.xyz == q.xyz && p.intensity == q.intensity && p.return_number == q.return_number &&
-                      p.number_of_returns == q.number_of_returns && p.classification == q.classification &&
-                      p.flags == q.flags && p.scanner_channel == q.scanner_channel &&
-                      p.scan_direction == q.scan_direction && p.edge_of_flight_line == q.edge_of_flight_line &&
-                      p.scan_angle_deg == q.scan_angle_deg && p.user_data == q.user_data &&
-                      p.point_source_id == q.point_source_id && p.gps_time == q.gps_time && p.rgb == q.rgb &&
-                      p.nir == q.nir;
-    if (!same && bad++ < 3) ADD_FAILURE() << "point " << i << " differs";
-  }
-  EXPECT_EQ(bad, 0u);
 }
 
 struct Layout {
