@@ -132,6 +132,8 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "average: agreement gate along the ray, local GSDs");
   s.AddDouble("fusion.combine_gate_sigmas", &f.combine_gate_sigmas, Affects("sigma", AtLeast(0), kSac),
               "average: ... or this many sigmas of the own depth's estimated noise");
+  s.AddDouble("fusion.combine_slope_step_sigmas", &f.combine_slope_step_sigmas, Affects("sigma", AtLeast(0), kSac),
+              "average: ray-surface slope over max(1 GSD, this many sigmas of the own depth's noise)");
   s.AddString("fusion.combine_weights", &f.combine_weights, Affects("-", Choices({"view", "equal", "noise"}), kSac),
               "average: view (1/k^2 of the estimated per-view noise) | equal | noise (k z^2/f and slope)");
   s.AddInt("fusion.combine_max_views", &f.combine_max_views, Affects("views", Closed(1, 64), kSac),

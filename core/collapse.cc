@@ -48,6 +48,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   DepthCombineOptions combine_options;
   combine_options.gate_gsd = options.combine_gate_gsd;
   combine_options.gate_sigmas = options.combine_gate_sigmas;
+  combine_options.slope_step_sigmas = options.combine_slope_step_sigmas;
   combine_options.weights = options.combine_weights == "equal"   ? CombineWeights::kEqual
                            : options.combine_weights == "noise" ? CombineWeights::kNoise
                                                                 : CombineWeights::kView;

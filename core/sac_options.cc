@@ -34,6 +34,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.OneOf("SacOptions.combine", o.combine, {"select", "average"});
   c.Greater("SacOptions.combine_gate_gsd", o.combine_gate_gsd, 0.0);
   c.AtLeast("SacOptions.combine_gate_sigmas", o.combine_gate_sigmas, 0.0);
+  c.AtLeast("SacOptions.combine_slope_step_sigmas", o.combine_slope_step_sigmas, 0.0);
   c.OneOf("SacOptions.combine_weights", o.combine_weights, {"view", "equal", "noise"});
   c.InRange("SacOptions.combine_max_views", o.combine_max_views, 1, 64);
   c.InRange("SacOptions.combine_max_view_angle_deg", o.combine_max_view_angle_deg, 0.0, 180.0);
