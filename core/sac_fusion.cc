@@ -47,6 +47,7 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   std::vector<double> noise_factor;
   if (options.combine == "average") {
     ViewNoiseOptions noise_options;
+    noise_options.slope_step_sigmas = options.combine_slope_step_sigmas;
     noise_factor = EstimateViewNoiseFactors(views, combine_views, noise_options);
     stats.noise_factor = noise_factor;
     timer.Mark("noise");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <Eigen/Dense>
 #include <tbb/parallel_for.h>
@@ -27,9 +28,10 @@ struct PairRow {
   double m = 0.0;   // observed mix
 };
 
-// The rows of one view v: one per combine view with enough residuals.
+// The rows of one view v: one per combine view with enough residuals. `prior_k` empty: the secant's slope over one
+// GSD; else over max(1 GSD, options.slope_step_sigmas sigma of v's depth under prior_k), as the combine takes it.
 std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, const std::vector<uint32_t>& others,
-                                const ViewNoiseOptions& options) {
+                                const ViewNoiseOptions& options, const std::vector<double>& prior_k) {
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
   std::vector<std::vector<double>> ratio(others.size()), share(others.size());
@@ -40,11 +42,12 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
       const double gsd = view.GsdAt(d);
       const Eigen::Vector3d ray_cam = DepthPixelInCamera(view.depth_camera, col, row, 1.0);
       const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * static_cast<double>(d));
-      const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (d + gsd));
       const double s_v = DepthNoiseScale(view, d);
+      const double step_m = prior_k.empty() ? gsd : std::max(gsd, options.slope_step_sigmas * prior_k[v] * s_v);
+      const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (d + step_m));
       for (size_t i = 0; i < others.size(); ++i) {
         RayHit hit;
-        if (!IntersectRay(views[others[i]], at_d, at_next, d, gsd, options.gate_gsd * gsd, options.min_slope, &hit)) {
+        if (!IntersectRay(views[others[i]], at_d, at_next, d, step_m, options.gate_gsd * gsd, options.min_slope, &hit)) {
           continue;
         }
         const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);
@@ -68,17 +71,14 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
   return rows;
 }
 
-}  // namespace
-
-std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
-                                             const std::vector<std::vector<uint32_t>>& combine_views,
-                                             const ViewNoiseOptions& options) {
+// One estimate of k (see the header); `prior_k` as in PairRowsOf. Empty when no pair has enough samples.
+std::vector<double> EstimatePass(const std::vector<SacView>& views,
+                                 const std::vector<std::vector<uint32_t>>& combine_views,
+                                 const ViewNoiseOptions& options, const std::vector<double>& prior_k) {
   const size_t n = views.size();
-  std::vector<double> k(n, 1.0);
-  if (n < 2) return k;
   std::vector<std::vector<PairRow>> per_view(n);
   tbb::parallel_for(size_t{0}, n, [&](size_t v) {
-    per_view[v] = PairRowsOf(views, static_cast<uint32_t>(v), combine_views[v], options);
+    per_view[v] = PairRowsOf(views, static_cast<uint32_t>(v), combine_views[v], options, prior_k);
   });
   // Normal equations of: sum over rows (a x_v + (1 - a) x_b - m)^2 + kMeanPull sum_v (x_v - mean x)^2.
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
@@ -95,7 +95,7 @@ std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
       ++num_rows;
     }
   }
-  if (num_rows == 0) return k;
+  if (num_rows == 0) return {};
   const Eigen::MatrixXd centering =
       Eigen::MatrixXd::Identity(n, n) - Eigen::MatrixXd::Constant(n, n, 1.0 / static_cast<double>(n));
   normal += kMeanPull * centering.transpose() * centering;
@@ -106,8 +106,25 @@ std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
   for (size_t v = 0; v < n; ++v) sorted.push_back(std::sqrt(std::max(x(v), 1e-12)));
   std::vector<double> copy = sorted;
   const double median = Median(&copy);
-  if (!(median > 0) || !std::isfinite(median)) return k;
+  if (!(median > 0) || !std::isfinite(median)) return {};
+  std::vector<double> k(n);
   for (size_t v = 0; v < n; ++v) k[v] = std::clamp(sorted[v], 0.1 * median, 10.0 * median);
+  return k;
+}
+
+}  // namespace
+
+std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
+                                             const std::vector<std::vector<uint32_t>>& combine_views,
+                                             const ViewNoiseOptions& options) {
+  const std::vector<double> ones(views.size(), 1.0);
+  if (views.size() < 2) return ones;
+  std::vector<double> k = EstimatePass(views, combine_views, options, {});
+  if (k.empty()) return ones;
+  if (options.slope_step_sigmas > 0) {
+    std::vector<double> refined = EstimatePass(views, combine_views, options, k);
+    if (!refined.empty()) k = std::move(refined);
+  }
   return k;
 }
 

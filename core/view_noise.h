@@ -12,6 +12,15 @@
 // least-squares sense (plus a weak pull of 1e-3 towards their mean, so views without pairs stay defined); the
 // result is clamped to [0.1, 10] times the median k. k is absolute: sigma_v(z) = k_v z gsd_v(z) metres (the
 // residuals inside the gate understate very large noise).
+//
+// The residuals come from the combine's secant, whose slope over one GSD scatters them where the noise is large
+// (core/depth_combine.h). So with slope_step_sigmas > 0 the estimate is made twice: first with the slope over one
+// GSD, then over max(1 GSD, slope_step_sigmas sigma) of the first k, as the combine will take it. F1 at 2x GSD
+// against one pass (both with the combine's 2 sigma step): aerial-bench Montpellier 0.9755 -> 0.9754, x2.5
+// 0.9395 -> 0.9436, Zurich 0.9654 -> 0.9653, x2.5 0.9083 -> 0.9166, St Barth 0.9416 -> 0.9419, x2.5 0.8566 ->
+// 0.8675 (median k there 0.0271 -> 0.0289); our bench (%) city 84.51 -> 84.51, x2.5 50.23 -> 51.17, zurich
+// 96.94 -> 96.94, x2.5 74.97 -> 75.72, montpellier 96.00 -> 95.99, x2.5 66.85 -> 68.55. A third pass: St Barth
+// x2.5 0.8685, Zurich x2.5 0.9173, St Barth 0.9419 (not worth a third noise stage).
 #include <cstdint>
 #include <vector>
 
@@ -26,6 +35,8 @@ struct ViewNoiseOptions {
                               // that narrow truncates the residuals and halved the estimated noise on blocks with
                               // large errors (aerial-bench Montpellier at error scale 2.5: k 0.0061 against 0.0130)
   double min_slope = 0.2;     // as DepthCombineOptions::min_slope
+  double slope_step_sigmas = 2.0;  // as DepthCombineOptions::slope_step_sigmas; > 0: a second pass whose secants
+                                   // take their slope over that many sigmas of the first pass's noise (0 = one pass)
 };
 
 // k per view (1 for all when no pair has enough samples: then only equal weights are meant). Deterministic for any thread count.
