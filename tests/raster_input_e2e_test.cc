@@ -144,7 +144,7 @@ TEST_F(RasterInputEndToEndTest, YamlOmegaPhiKappaFusesToTheSamePoints) {
 // CSV, interior in millimetres, rotation matrices, depth as range along the ray (rounded to float32 on the way),
 // striped LZW TIFFs. CSV files carry no scene heights, so tile planning samples the depth rasters: its height
 // range differs from the sparse points', and with it each tile's depth windows; the tiled cloud is compared for
-// near-equality only.
+// near-equality only, the untiled one point by point.
 TEST_F(RasterInputEndToEndTest, CsvRotationMatricesAndRangeDepthsFuseToTheSamePoints) {
   const fs::path dir = Convert("colmap", "rasters-csv", "rasters_csv");
   std::ifstream in(dir / "cameras.csv");
@@ -159,7 +159,10 @@ TEST_F(RasterInputEndToEndTest, CsvRotationMatricesAndRangeDepthsFuseToTheSamePo
   std::cout << "[ raster e2e ] csv untiled: " << d.count_b << " / " << d.count_a << " points, " << d.moved
             << " moved, max " << d.max_diff_quanta << " quanta\n";
   EXPECT_EQ(d.count_b, d.count_a);
-  EXPECT_EQ(d.mismatched, 0u) << d.moved << " moved, max " << d.max_diff_quanta;
+  // The rounded depths differ from the COLMAP maps by micrometres, which can carry a neighbour depth across the
+  // combine's gate for a handful of points (2026-11-26: 1 of 359,644 moved 0.18 m, 107 by at most 2 mm): at most
+  // 0.01 % of the points may move beyond the tolerance; a wrong conversion moves nearly all of them.
+  EXPECT_LE(d.mismatched, d.count_a / 10000) << d.moved << " moved, max " << d.max_diff_quanta;
   const size_t ref = ReadAllLasPoints((Out("colmap_tiled") / "fused.laz").string()).size();
   const size_t got = ReadAllLasPoints((tiled / "fused.laz").string()).size();
   std::cout << "[ raster e2e ] csv tiled (own height range): " << got << " / " << ref << " points\n";
