@@ -47,7 +47,8 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
       const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (d + step_m));
       for (size_t i = 0; i < others.size(); ++i) {
         RayHit hit;
-        if (!IntersectRay(views[others[i]], at_d, at_next, d, step_m, options.gate_gsd * gsd, options.min_slope, &hit)) {
+        if (!IntersectRay(views[others[i]], at_d, at_next, d, step_m, options.gate_gsd * gsd, options.min_slope,
+                          &hit)) {
           continue;
         }
         const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);
