@@ -198,7 +198,7 @@ TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
       "fusion.free_space_min_views: 2\nfusion.free_space_sigmas: 3.0\nfusion.min_consistent_views: 4\n"
       "fusion.outlier_expected_factor: 1.5\nfusion.correspondence_tolerance_sigmas: 1.0\n"
       "fusion.coverage_tolerance_sigmas: 5.0\nfusion.combine: \"average\"\nfusion.combine_gate_gsd: 4.0\n"
-      "fusion.combine_gate_sigmas: 3.0\nfusion.combine_slope_step_sigmas: 2.0\nfusion.combine_weights: \"view\"\n"
+      "fusion.combine_gate_sigmas: 3.0\nfusion.combine_slope_step_sigmas: 3.0\nfusion.combine_weights: \"view\"\n"
       "fusion.combine_max_views: 40\n"
       "fusion.combine_max_view_angle_deg: 65.0\n"
       "superpixels.region_size_px: 16\nsuperpixels.ruler: 10.0\nsuperpixels.iterations: 4\n"

@@ -69,7 +69,7 @@ struct SacOptions {
   std::string combine = "average";
   double combine_gate_gsd = 4.0;        // average: depth maps within this many local GSDs along the ray take part,
   double combine_gate_sigmas = 3.0;     // or within this many sigmas of the estimated noise of the own depth
-  double combine_slope_step_sigmas = 2.0;  // average: the ray-surface slope is taken over max(1 GSD, this many sigmas
+  double combine_slope_step_sigmas = 3.0;  // average: the ray-surface slope is taken over max(1 GSD, this many sigmas
                                            // of the own depth's estimated noise) along the ray (0 = 1 GSD)
   // average: how the agreeing depth maps are weighted (core/depth_combine.h): "view" (1 / k_v^2, the per-view noise
   // factor estimated from the data, so an inconsistent depth map counts less), "equal", or "noise" (the full

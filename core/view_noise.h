@@ -35,7 +35,7 @@ struct ViewNoiseOptions {
                               // that narrow truncates the residuals and halved the estimated noise on blocks with
                               // large errors (aerial-bench Montpellier at error scale 2.5: k 0.0061 against 0.0130)
   double min_slope = 0.2;     // as DepthCombineOptions::min_slope
-  double slope_step_sigmas = 2.0;  // as DepthCombineOptions::slope_step_sigmas; > 0: a second pass whose secants
+  double slope_step_sigmas = 3.0;  // as DepthCombineOptions::slope_step_sigmas; > 0: a second pass whose secants
                                    // take their slope over that many sigmas of the first pass's noise (0 = one pass)
 };
 
