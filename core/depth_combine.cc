@@ -72,7 +72,7 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   auto factor = [&](uint32_t i) { return noise_factor.empty() ? 1.0 : noise_factor[i]; };
   const double own_sigma = factor(v) * DepthNoiseScale(view, depth_m);
   // The secant's second sample: one GSD, or slope_step_sigmas sigma of the own depth where the noise is larger.
-  const double step_m = std::max(gsd, noise_factor.empty() ? 0.0 : options.slope_step_sigmas * own_sigma);
+  const double step_m = noise_factor.empty() ? gsd : SecantStepM(gsd, own_sigma, options.slope_step_sigmas);
   // The gate: gate_gsd local GSDs, widened to gate_sigmas sigma of the own depth when the noise is larger.
   const double gate_m = std::max(options.gate_gsd * gsd, noise_factor.empty() ? 0.0 : options.gate_sigmas * own_sigma);
   // The ray of pixel (u, v): x(t) = world_from_cam * (ray_cam * t), ray_cam with unit z.

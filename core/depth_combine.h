@@ -31,8 +31,9 @@
 //    montpellier 96.03 -> 96.00 -> 95.95, x2.5 65.23 -> 66.85 -> 68.48 (with a one-pass noise estimate). With the
 //    two-pass estimate (core/view_noise.h), 2 -> 3 sigma: Montpellier 0.9754 -> 0.9748, x2.5 0.9436 -> 0.9458,
 //    Zurich 0.9653 -> 0.9649, x2.5 0.9166 -> 0.9224, St Barth 0.9419 -> 0.9415, x2.5 0.8675 -> 0.8739: 3 sigma is
-//    the default (the sum of F1 over the six blocks +0.013, at most 0.0006 lost at error scale 1). Also tried: a centred difference over +-2 sigma (one more
-//    lookup per neighbour: St Barth x2.5 0.8665 but Zurich 0.9643, St Barth 0.9410), and the neighbour's point
+//    the default (the sum of F1 over the six blocks +0.013, at most 0.0006 lost at error scale 1). Also tried: a
+//    centred difference over +-2 sigma (one more lookup per neighbour: St Barth x2.5 0.8665 but Zurich 0.9643,
+//    St Barth 0.9410), and the neighbour's point
 //    projected onto the ray instead of the secant (no slope; Montpellier x2.5 0.9376, St Barth x2.5 0.8558, but
 //    all three error-scale-1 blocks lower by 0.001-0.005 and our city 83.51: wrong on tilted surfaces).
 //  * Robustness: only neighbours whose t_b lies within the gate of d take part (the others see another surface,
@@ -65,8 +66,9 @@ struct DepthCombineOptions {
   double gate_gsd = 12.0;     // neighbours farther than this many local GSDs along the ray are ignored ...
   double gate_sigmas = 3.0;   // ... unless within this many sigmas of the own depth (with noise factors)
   double min_slope = 0.2;     // |f'| below this (grazing ray-surface intersection) is ignored
-  double slope_step_sigmas = 3.0;  // f' from a second sample max(1 local GSD, this x sigma of the own depth)
-                                   // further along the ray (with noise factors; 0 = always 1 GSD)
+  // f' from a second sample max(1 local GSD, this x sigma of the own depth) further along the ray (with noise
+  // factors; 0 = always 1 GSD)
+  double slope_step_sigmas = kCombineSlopeStepSigmas;
   CombineWeights weights = CombineWeights::kView;
 };
 

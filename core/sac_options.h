@@ -7,6 +7,10 @@
 
 namespace sacfuse {
 
+// Default of SacOptions::combine_slope_step_sigmas, also the default of the structs that take it over
+// (DepthCombineOptions, ViewNoiseOptions), so a test with default options runs what `sacfuse run` runs.
+inline constexpr double kCombineSlopeStepSigmas = 3.0;
+
 struct SacOptions {
   // --- Neighbour views, chosen from geometry (not a fixed list).
   int max_neighbor_views = 10;          // per view, the best by footprint overlap x cos(view angle)
@@ -69,8 +73,9 @@ struct SacOptions {
   std::string combine = "average";
   double combine_gate_gsd = 4.0;        // average: depth maps within this many local GSDs along the ray take part,
   double combine_gate_sigmas = 3.0;     // or within this many sigmas of the estimated noise of the own depth
-  double combine_slope_step_sigmas = 3.0;  // average: the ray-surface slope is taken over max(1 GSD, this many sigmas
-                                           // of the own depth's estimated noise) along the ray (0 = 1 GSD)
+  // average: the ray-surface slope is taken over max(1 GSD, this many sigmas of the own depth's estimated noise)
+  // along the ray (0 = 1 GSD); also the step of the noise estimate's second pass (core/view_noise.h)
+  double combine_slope_step_sigmas = kCombineSlopeStepSigmas;
   // average: how the agreeing depth maps are weighted (core/depth_combine.h): "view" (1 / k_v^2, the per-view noise
   // factor estimated from the data, so an inconsistent depth map counts less), "equal", or "noise" (the full
   // stereo model: 1 / (k_v z^2 / f)^2 times the ray intersection's slope squared).

@@ -2,6 +2,7 @@
 // Depth agreement tolerance, shared by correspondences, collapse and the outlier test so that "consistent" means
 // one thing everywhere: |z_a - z_b| <= depth_tolerance_gsd * GSD(z) + depth_tolerance_rel * z; and, with the
 // per-view noise factors of core/view_noise.h, the noise-aware variants.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -14,6 +15,12 @@ namespace sacfuse {
 // Relative z-error scale of a depth map at depth z: z * gsd(z) = z^2 / focal (stereo: sigma_z = z^2 sigma_d / (f B)),
 // up to the view's noise factor k.
 inline double DepthNoiseScale(const SacView& view, double z_m) { return z_m * view.GsdAt(z_m); }
+
+// The step along a ray between the two samples of the combine's secant (core/depth_combine.h), metres: one local
+// GSD, or slope_step_sigmas sigma of the depth's estimated noise where that is longer.
+inline double SecantStepM(double gsd_m, double sigma_m, double slope_step_sigmas) {
+  return std::max(gsd_m, slope_step_sigmas * sigma_m);
+}
 
 // Estimated z-noise of view i at depth z, metres: k_i z^2 / f (noise_factor from EstimateViewNoiseFactors).
 inline double DepthSigmaM(const std::vector<SacView>& views, const std::vector<double>& noise_factor, uint32_t i,

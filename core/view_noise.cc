@@ -43,7 +43,7 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
       const Eigen::Vector3d ray_cam = DepthPixelInCamera(view.depth_camera, col, row, 1.0);
       const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * static_cast<double>(d));
       const double s_v = DepthNoiseScale(view, d);
-      const double step_m = prior_k.empty() ? gsd : std::max(gsd, options.slope_step_sigmas * prior_k[v] * s_v);
+      const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, prior_k[v] * s_v, options.slope_step_sigmas);
       const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (d + step_m));
       for (size_t i = 0; i < others.size(); ++i) {
         RayHit hit;

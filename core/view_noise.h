@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/sac_options.h"
 #include "core/sac_view.h"
 
 namespace sacfuse {
@@ -35,8 +36,9 @@ struct ViewNoiseOptions {
                               // that narrow truncates the residuals and halved the estimated noise on blocks with
                               // large errors (aerial-bench Montpellier at error scale 2.5: k 0.0061 against 0.0130)
   double min_slope = 0.2;     // as DepthCombineOptions::min_slope
-  double slope_step_sigmas = 3.0;  // as DepthCombineOptions::slope_step_sigmas; > 0: a second pass whose secants
-                                   // take their slope over that many sigmas of the first pass's noise (0 = one pass)
+  // As DepthCombineOptions::slope_step_sigmas; > 0: a second pass whose secants take their slope over that many
+  // sigmas of the first pass's noise (0 = one pass).
+  double slope_step_sigmas = kCombineSlopeStepSigmas;
 };
 
 // k per view (1 for all when no pair has enough samples: then only equal weights are meant). Deterministic for any thread count.
