@@ -1,7 +1,9 @@
 #include "eval/eval.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <tbb/blocked_range.h>
@@ -60,11 +62,41 @@ double Median(std::vector<float> v) {
   return 0.5 * (lower + upper);
 }
 
+// Distance from each reference point (where `use` is non-zero) to its nearest point of the streamed cloud,
+// exact up to `radius` (+infinity beyond). Points are moved into the local frame (minus `origin`) and then by
+// local_from_input (the alignment; identity without one).
+std::vector<float> StreamedNearestDistances(const PointIndex& reference_index, size_t reference_size,
+                                            const std::vector<uint8_t>& use, const Eigen::Vector3d& origin,
+                                            const Eigen::Matrix4d& local_from_input, float radius,
+                                            const ResultChunks& all_points) {
+  std::vector<std::atomic<float>> best(reference_size);
+  for (auto& b : best) b.store(std::numeric_limits<float>::infinity(), std::memory_order_relaxed);
+  const Eigen::Matrix3d rot = local_from_input.topLeftCorner<3, 3>();
+  const Eigen::Vector3d trans = local_from_input.topRightCorner<3, 1>();
+  all_points([&](const std::vector<Eigen::Vector3d>& chunk) {
+    ParallelFor(chunk.size(), [&](size_t i) {
+      if (!chunk[i].allFinite()) throw Error("result point has a non-finite coordinate");
+      const Eigen::Vector3f p = (rot * (chunk[i] - origin) + trans).cast<float>();
+      reference_index.ForEachWithin(p, radius, [&](uint32_t j, float squared_distance) {
+        const float d = std::sqrt(squared_distance);
+        float known = best[j].load(std::memory_order_relaxed);
+        while (d < known && !best[j].compare_exchange_weak(known, d, std::memory_order_relaxed)) {
+        }
+      });
+    });
+  });
+  std::vector<float> out(reference_size, std::numeric_limits<float>::infinity());
+  for (size_t j = 0; j < reference_size; ++j) {
+    if (use[j] != 0) out[j] = best[j].load(std::memory_order_relaxed);
+  }
+  return out;
+}
+
 }  // namespace
 
 EvalReport EvaluateClouds(const std::vector<Eigen::Vector3d>& result, const std::vector<uint16_t>& result_source_ids,
                           const std::vector<Eigen::Vector3d>& reference, const GeoMask* mask,
-                          const EvalOptions& options) {
+                          const EvalOptions& options, const ResultChunks& all_result_points) {
   ValidateEvalOptions(options);
   if (!result_source_ids.empty() && result_source_ids.size() != result.size()) {
     throw Error("EvaluateClouds: " + std::to_string(result_source_ids.size()) + " source IDs for " +
@@ -102,7 +134,19 @@ EvalReport EvaluateClouds(const std::vector<Eigen::Vector3d>& result, const std:
   const TopSurface top(ref, EvalTopCellSize(options));
   const std::vector<float> res_dist = NearestDistances(ref_index, res, &res_in);
   std::vector<float> ref_dist;
-  {
+  if (all_result_points) {
+    // The local frame's alignment: res (local) = rot * (input - origin) + trans, as applied above.
+    Eigen::Matrix4d local_from_input = Eigen::Matrix4d::Identity();
+    if (report.aligned) {
+      const Eigen::Matrix3d rot = report.alignment.topLeftCorner<3, 3>();
+      local_from_input.topLeftCorner<3, 3>() = rot;
+      local_from_input.topRightCorner<3, 1>() = report.alignment.topRightCorner<3, 1>() - origin + rot * origin;
+    }
+    ref_dist = StreamedNearestDistances(ref_index, ref.size(), ref_in, origin, local_from_input,
+                                        static_cast<float>(*std::max_element(taus.begin(), taus.end())),
+                                        all_result_points);
+    report.completeness_from_all_points = true;
+  } else {
     const PointIndex res_index(res);
     ref_dist = NearestDistances(res_index, ref, &ref_in);
   }

@@ -33,6 +33,7 @@
 // coordinates lose nothing. Memory: ~40 bytes per result point and ~30 per reference point on top of the
 // inputs; issue 4 will tile the evaluation for billion-point clouds.
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -63,6 +64,9 @@ struct EvalReport {
   uint64_t result_points = 0;         // scored (after the stride below)
   uint64_t result_points_in_file = 0;  // EvaluateLasFiles: all points of the file (0 = not from a file)
   uint64_t result_stride = 1;          // EvaluateLasFiles: every k-th point was scored (max_result_points)
+  // Completeness was measured against every result point (streamed), not only the scored ones: a thinned cloud
+  // leaves reference points without a result point within a small tau although the whole cloud covers them.
+  bool completeness_from_all_points = false;
   uint64_t result_points_evaluated = 0;
   uint64_t result_points_unobserved = 0;
   uint64_t result_points_outside_mask = 0;
@@ -75,15 +79,22 @@ struct EvalReport {
   Eigen::Matrix4d alignment = Eigen::Matrix4d::Identity();  // result_from_input, in the input CRS
 };
 
+// Every point of a result cloud, in chunks: calls `chunk` once per chunk, in any order (for clouds too large to
+// hold; see EvaluateClouds).
+using ResultChunks = std::function<void(const std::function<void(const std::vector<Eigen::Vector3d>&)>& chunk)>;
+
 // Pure API on in-memory points (coordinates in any metric CRS). result_source_ids is empty or one per result
 // point. mask may be null. Throws ConfigError for bad options and Error for an empty reference, non-finite
-// coordinates or mismatched sizes.
+// coordinates or mismatched sizes. `all_result_points` (optional): the whole cloud of which `result` is a thinned
+// part; completeness is then measured against all of it, streamed (memory: one float per reference point), and
+// accuracy on `result`.
 EvalReport EvaluateClouds(const std::vector<Eigen::Vector3d>& result, const std::vector<uint16_t>& result_source_ids,
                           const std::vector<Eigen::Vector3d>& reference, const GeoMask* mask,
-                          const EvalOptions& options);
+                          const EvalOptions& options, const ResultChunks& all_result_points = {});
 
-// Reads both LAS files (and options.mask_path when set), then EvaluateClouds. Throws InputError naming the bad
-// file.
+// Reads both LAS files (and options.mask_path when set), then EvaluateClouds. Beyond options.max_result_points it
+// scores accuracy on every k-th result point and completeness against all of them, read a second time in chunks.
+// Throws InputError naming the bad file.
 EvalReport EvaluateLasFiles(const std::string& result_las, const std::string& reference_las,
                             const EvalOptions& options);
 

@@ -1,6 +1,7 @@
 // EvaluateLasFiles: the file front end of eval.h.
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <new>
 #include <string>
 #include <vector>
@@ -68,7 +69,28 @@ EvalReport EvaluateLasFiles(const std::string& result_las, const std::string& re
       throw InputError(options.mask_path, std::string("cannot read the evaluation mask: ") + e.what());
     }
   }
-  EvalReport report = EvaluateClouds(result, ids, reference, has_mask ? &mask : nullptr, options);
+  // A thinned cloud understates completeness at thresholds near its point spacing, so completeness is measured
+  // against every point, read again in chunks.
+  ResultChunks all_points;
+  if (stride > 1) {
+    all_points = [&result_las](const std::function<void(const std::vector<Eigen::Vector3d>&)>& chunk) {
+      try {
+        LasReader reader(result_las);
+        std::vector<LasPoint> las;
+        std::vector<Eigen::Vector3d> xyz;
+        while (reader.Read(&las, 1 << 20) > 0) {
+          xyz.resize(las.size());
+          for (size_t i = 0; i < las.size(); ++i) xyz[i] = las[i].xyz;
+          chunk(xyz);
+        }
+      } catch (const std::bad_alloc&) {
+        throw;
+      } catch (const std::exception& e) {
+        throw InputError(result_las, std::string("cannot read LAS file again for completeness: ") + e.what());
+      }
+    };
+  }
+  EvalReport report = EvaluateClouds(result, ids, reference, has_mask ? &mask : nullptr, options, all_points);
   report.result_points_in_file = in_file;
   report.result_stride = stride;
   return report;

@@ -111,6 +111,45 @@ void ExpectInputErrorNaming(const std::string& result, const std::string& refere
   }
 }
 
+// Beyond max_result_points accuracy is scored on every k-th point, but completeness still sees every point: a
+// dense plane thinned 16-fold leaves reference points without a result point within 5 cm, the whole plane does not.
+TEST(EvaluateLasFilesThinned, CompletenessAgainstEveryPoint) {
+  testing::TempDir dir;
+  Points dense, reference;
+  for (int r = 0; r < 200; ++r) {
+    for (int c = 0; c < 200; ++c) dense.push_back(kUtm + Eigen::Vector3d(0.05 * c, 0.05 * r, 0.0));
+  }
+  for (int r = 0; r < 33; ++r) {
+    for (int c = 0; c < 33; ++c) reference.push_back(kUtm + Eigen::Vector3d(0.3 * c + 0.01, 0.3 * r + 0.01, 0.0));
+  }
+  const std::string res_path = (dir / "dense.las").string(), ref_path = (dir / "reference.las").string();
+  WriteLas(res_path, dense, false);
+  WriteLas(ref_path, reference, false);
+  EvalOptions o;
+  o.tau_m = {0.05, 0.5};
+  const EvalReport whole = EvaluateLasFiles(res_path, ref_path, o);
+  o.max_result_points = dense.size() / 16.0;
+  const EvalReport thinned = EvaluateLasFiles(res_path, ref_path, o);
+  EXPECT_EQ(whole.result_stride, 1u);
+  EXPECT_FALSE(whole.completeness_from_all_points);
+  EXPECT_EQ(thinned.result_stride, 16u);
+  EXPECT_EQ(thinned.result_points, dense.size() / 16);
+  EXPECT_TRUE(thinned.completeness_from_all_points);
+  ASSERT_EQ(thinned.scores.size(), 2u);
+  EXPECT_GT(whole.scores[0].completeness, 0.99);
+  for (size_t t = 0; t < 2; ++t) {
+    EXPECT_DOUBLE_EQ(thinned.scores[t].completeness, whole.scores[t].completeness) << t;
+    EXPECT_EQ(thinned.scores[t].reference_complete, whole.scores[t].reference_complete) << t;
+  }
+  // The thinned points alone (the old behaviour) miss most reference points at 5 cm.
+  const Points stored = XyzOf(ReadAllLasPoints(res_path));
+  Points every16th;
+  for (size_t i = 0; i < stored.size(); i += 16) every16th.push_back(stored[i]);
+  const EvalReport alone = EvaluateClouds(every16th, {}, XyzOf(ReadAllLasPoints(ref_path)), nullptr, o);
+  EXPECT_LT(alone.scores[0].completeness, 0.5);
+  EXPECT_DOUBLE_EQ(alone.scores[0].accuracy, thinned.scores[0].accuracy);
+}
+
 TEST_F(EvaluateLasFilesTest, BadFilesAreNamed) {
   const std::string missing = (dir_ / "nope.las").string();
   ExpectInputErrorNaming(missing, ref_path_, missing);

@@ -30,6 +30,7 @@ std::string EvalReportToJson(const EvalReport& r, int indent) {
   j["result_points"] = r.result_points;
   j["result_points_in_file"] = r.result_points_in_file;
   j["result_stride"] = r.result_stride;
+  j["completeness_from_all_points"] = r.completeness_from_all_points;
   j["result_points_evaluated"] = r.result_points_evaluated;
   j["result_points_unobserved"] = r.result_points_unobserved;
   j["result_points_outside_mask"] = r.result_points_outside_mask;

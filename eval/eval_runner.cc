@@ -37,8 +37,8 @@ EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out) {
   spdlog::info("evaluating {} against {}", request.result_las, request.reference_las);
   const EvalReport report = EvaluateLasFiles(request.result_las, request.reference_las, options);
   if (report.result_stride > 1) {
-    out << "scoring every " << report.result_stride << "th of " << report.result_points_in_file
-        << " result points (memory budget)\n";
+    out << "accuracy scored on every " << report.result_stride << "th of " << report.result_points_in_file
+        << " result points (memory budget); completeness against all of them\n";
   }
   out << FormatEvalTable(report);
   for (const auto& s : report.scores) {

@@ -56,6 +56,39 @@ size_t PointIndex::Knn(const Eigen::Vector3f& q, size_t k, uint32_t* indices, fl
   return impl_->tree->knnSearch(q.data(), k, indices, squared_distances);
 }
 
+namespace {
+
+// nanoflann result set that hands each point within the radius to a callback instead of collecting it.
+class VisitWithin {
+ public:
+  VisitWithin(float squared_radius, const std::function<void(uint32_t, float)>& visit)
+      : squared_radius_(squared_radius), visit_(visit) {}
+  bool full() const { return true; }
+  float worstDist() const { return squared_radius_; }
+  size_t size() const { return count_; }
+  bool addPoint(float squared_distance, uint32_t index) {
+    if (squared_distance < squared_radius_) {
+      visit_(index, squared_distance);
+      ++count_;
+    }
+    return true;
+  }
+
+ private:
+  float squared_radius_;
+  const std::function<void(uint32_t, float)>& visit_;
+  size_t count_ = 0;
+};
+
+}  // namespace
+
+void PointIndex::ForEachWithin(const Eigen::Vector3f& q, float radius,
+                               const std::function<void(uint32_t, float)>& visit) const {
+  if (size() == 0 || !(radius > 0)) return;
+  VisitWithin within(radius * radius, visit);
+  impl_->tree->findNeighbors(within, q.data(), nanoflann::SearchParams());
+}
+
 std::vector<float> NearestDistances(const PointIndex& index, const std::vector<Eigen::Vector3f>& queries,
                                     const std::vector<uint8_t>* use) {
   std::vector<float> out(queries.size(), std::numeric_limits<float>::infinity());

@@ -3,6 +3,7 @@
 // evaluation. The points are not copied: they must outlive the index and stay unchanged. Memory: ~4 bytes per
 // point plus the tree nodes (~1 byte per point with 10-point leaves).
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -22,6 +23,9 @@ class PointIndex {
   bool Nearest(const Eigen::Vector3f& q, uint32_t* index, float* squared_distance) const;
   // Up to k nearest points, closest first; returns how many were found.
   size_t Knn(const Eigen::Vector3f& q, size_t k, uint32_t* indices, float* squared_distances) const;
+  // Calls visit(index, squared_distance) for every point closer to q than `radius` (any order).
+  void ForEachWithin(const Eigen::Vector3f& q, float radius,
+                     const std::function<void(uint32_t, float)>& visit) const;
 
  private:
   struct Impl;
