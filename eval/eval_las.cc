@@ -14,30 +14,17 @@
 namespace sacfuse {
 namespace {
 
-// Streams the coordinates (and point source IDs) of a LAS file; every failure becomes an InputError naming it.
-// Keeps every `stride`-th point (the first, then every stride-th after it); *count receives the file's count.
-void ReadLasCoordinates(const std::string& path, std::vector<Eigen::Vector3d>* xyz, std::vector<uint16_t>* ids,
-                        double max_points = 0, uint64_t* stride_out = nullptr, uint64_t* count_out = nullptr) {
+// Streams the points of a LAS file in chunks to `chunk` (after the header is read, `on_count` receives the file's
+// point count); every failure but a thrown InputError or bad_alloc becomes an InputError naming the file.
+void ForEachLasChunk(const std::string& path, const std::function<void(uint64_t)>& on_count,
+                     const std::function<void(const std::vector<LasPoint>&)>& chunk) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "no such LAS file");
   try {
     LasReader reader(path);
-    const uint64_t count = reader.header().point_count;
-    const uint64_t stride =
-        max_points > 0 && count > max_points ? static_cast<uint64_t>(std::ceil(count / max_points)) : 1;
-    if (stride_out != nullptr) *stride_out = stride;
-    if (count_out != nullptr) *count_out = count;
-    xyz->reserve(static_cast<size_t>(count / stride + 1));
-    if (ids != nullptr) ids->reserve(static_cast<size_t>(count / stride + 1));
-    std::vector<LasPoint> chunk;
-    uint64_t index = 0;
-    while (reader.Read(&chunk, 1 << 16) > 0) {
-      for (const LasPoint& p : chunk) {
-        if (index++ % stride != 0) continue;
-        xyz->push_back(p.xyz);
-        if (ids != nullptr) ids->push_back(p.point_source_id);
-      }
-    }
+    if (on_count) on_count(reader.header().point_count);
+    std::vector<LasPoint> points;
+    while (reader.Read(&points, 1 << 16) > 0) chunk(points);
   } catch (const InputError&) {
     throw;
   } catch (const std::bad_alloc&) {
@@ -45,6 +32,29 @@ void ReadLasCoordinates(const std::string& path, std::vector<Eigen::Vector3d>* x
   } catch (const std::exception& e) {
     throw InputError(path, std::string("cannot read LAS file: ") + e.what());
   }
+}
+
+// The coordinates (and point source IDs) of a LAS file: every `stride`-th point (the first, then every stride-th
+// after it), stride = ceil(count / max_points) beyond max_points (0 = all); *count receives the file's count.
+void ReadLasCoordinates(const std::string& path, std::vector<Eigen::Vector3d>* xyz, std::vector<uint16_t>* ids,
+                        double max_points = 0, uint64_t* stride_out = nullptr, uint64_t* count_out = nullptr) {
+  uint64_t stride = 1, index = 0;
+  ForEachLasChunk(
+      path,
+      [&](uint64_t count) {
+        stride = max_points > 0 && count > max_points ? static_cast<uint64_t>(std::ceil(count / max_points)) : 1;
+        if (stride_out != nullptr) *stride_out = stride;
+        if (count_out != nullptr) *count_out = count;
+        xyz->reserve(static_cast<size_t>(count / stride + 1));
+        if (ids != nullptr) ids->reserve(static_cast<size_t>(count / stride + 1));
+      },
+      [&](const std::vector<LasPoint>& chunk) {
+        for (const LasPoint& p : chunk) {
+          if (index++ % stride != 0) continue;
+          xyz->push_back(p.xyz);
+          if (ids != nullptr) ids->push_back(p.point_source_id);
+        }
+      });
 }
 
 }  // namespace
@@ -74,20 +84,12 @@ EvalReport EvaluateLasFiles(const std::string& result_las, const std::string& re
   ResultChunks all_points;
   if (stride > 1) {
     all_points = [&result_las](const std::function<void(const std::vector<Eigen::Vector3d>&)>& chunk) {
-      try {
-        LasReader reader(result_las);
-        std::vector<LasPoint> las;
-        std::vector<Eigen::Vector3d> xyz;
-        while (reader.Read(&las, 1 << 20) > 0) {
-          xyz.resize(las.size());
-          for (size_t i = 0; i < las.size(); ++i) xyz[i] = las[i].xyz;
-          chunk(xyz);
-        }
-      } catch (const std::bad_alloc&) {
-        throw;
-      } catch (const std::exception& e) {
-        throw InputError(result_las, std::string("cannot read LAS file again for completeness: ") + e.what());
-      }
+      std::vector<Eigen::Vector3d> xyz;
+      ForEachLasChunk(result_las, {}, [&](const std::vector<LasPoint>& points) {
+        xyz.resize(points.size());
+        for (size_t i = 0; i < points.size(); ++i) xyz[i] = points[i].xyz;
+        chunk(xyz);
+      });
     };
   }
   EvalReport report = EvaluateClouds(result, ids, reference, has_mask ? &mask : nullptr, options, all_points);
