@@ -47,6 +47,11 @@ bool SurfaceOffset(const SacView& b, const Eigen::Vector3d& point_in_world, doub
 
 }  // namespace
 
+SecantPoints SecantPointsOnRay(const SacView& view, double u, double v_px, double depth_m, double step_m) {
+  const Eigen::Vector3d ray_cam = view.depth_camera.Unproject(u, v_px, 1.0);
+  return {view.world_from_cam * (ray_cam * depth_m), view.world_from_cam * (ray_cam * (depth_m + step_m))};
+}
+
 bool IntersectRay(const SacView& b, const Eigen::Vector3d& at_depth, const Eigen::Vector3d& at_next, double depth_m,
                   double step_m, double max_offset_m, double min_slope, RayHit* hit) {
   const double spread_m = 2.0 * max_offset_m;
@@ -75,10 +80,7 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   const double step_m = noise_factor.empty() ? gsd : SecantStepM(gsd, own_sigma, options.slope_step_sigmas);
   // The gate: gate_gsd local GSDs, widened to gate_sigmas sigma of the own depth when the noise is larger.
   const double gate_m = std::max(options.gate_gsd * gsd, noise_factor.empty() ? 0.0 : options.gate_sigmas * own_sigma);
-  // The ray of pixel (u, v): x(t) = world_from_cam * (ray_cam * t), ray_cam with unit z.
-  const Eigen::Vector3d ray_cam = view.depth_camera.Unproject(u, v_px, 1.0);
-  const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * depth_m);
-  const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (depth_m + step_m));
+  const SecantPoints ray = SecantPointsOnRay(view, u, v_px, depth_m, step_m);
 
   // The weight of depth map i whose z-depth at the point is z_m and whose intersection with the ray has slope
   // `slope` (1 for the own depth): options.weights. The noise model is evaluated only when it is the rule.
@@ -99,7 +101,7 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   CombinedDepth out;
   for (const uint32_t nb : neighbors) {
     RayHit hit;
-    if (!IntersectRay(views[nb], at_d, at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
+    if (!IntersectRay(views[nb], ray.at_depth, ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
     const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
     weight_sum += w;
     weighted_depth += w * hit.depth_m;

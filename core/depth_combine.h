@@ -83,7 +83,14 @@ struct RayHit {
   double slope = 0.0;     // f'(d)
   double z_b_m = 0.0;     // the point's depth in b
 };
-// `at_depth` and `at_next` are the ray's points at depth d and d + step_m; false when b has no surface there,
+// The two points at which the secant samples the ray of image point (u, v) of `view` (corner convention): at depth
+// `depth_m` and `depth_m` + `step_m` (x(t) = world_from_cam * (ray_cam * t), ray_cam with unit z).
+struct SecantPoints {
+  Eigen::Vector3d at_depth, at_next;
+};
+SecantPoints SecantPointsOnRay(const SacView& view, double u, double v_px, double depth_m, double step_m);
+
+// `at_depth` and `at_next` are the ray's points at depth d and d + step_m (SecantPointsOnRay); false when b has no surface there,
 // its surface is more than `max_offset_m` away, or the intersection is grazing (|f'| < min_slope).
 bool IntersectRay(const SacView& b, const Eigen::Vector3d& at_depth, const Eigen::Vector3d& at_next, double depth_m,
                   double step_m, double max_offset_m, double min_slope, RayHit* hit);

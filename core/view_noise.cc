@@ -7,7 +7,6 @@
 #include <Eigen/Dense>
 #include <tbb/parallel_for.h>
 
-#include "core/backproject.h"
 #include "core/depth_combine.h"
 
 namespace sacfuse {
@@ -40,15 +39,13 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
       const float d = depth.at(row, col);
       if (!IsValidDepth(d)) continue;
       const double gsd = view.GsdAt(d);
-      const Eigen::Vector3d ray_cam = DepthPixelInCamera(view.depth_camera, col, row, 1.0);
-      const Eigen::Vector3d at_d = view.world_from_cam * (ray_cam * static_cast<double>(d));
       const double s_v = DepthNoiseScale(view, d);
       const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, prior_k[v] * s_v, options.slope_step_sigmas);
-      const Eigen::Vector3d at_next = view.world_from_cam * (ray_cam * (d + step_m));
+      const SecantPoints ray = SecantPointsOnRay(view, col + 0.5, row + 0.5, d, step_m);
       for (size_t i = 0; i < others.size(); ++i) {
         RayHit hit;
-        if (!IntersectRay(views[others[i]], at_d, at_next, d, step_m, options.gate_gsd * gsd, options.min_slope,
-                          &hit)) {
+        if (!IntersectRay(views[others[i]], ray.at_depth, ray.at_next, d, step_m, options.gate_gsd * gsd,
+                          options.min_slope, &hit)) {
           continue;
         }
         const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);
