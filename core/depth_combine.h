@@ -90,8 +90,8 @@ struct SecantPoints {
 };
 SecantPoints SecantPointsOnRay(const SacView& view, double u, double v_px, double depth_m, double step_m);
 
-// `at_depth` and `at_next` are the ray's points at depth d and d + step_m (SecantPointsOnRay); false when b has no surface there,
-// its surface is more than `max_offset_m` away, or the intersection is grazing (|f'| < min_slope).
+// `at_depth` and `at_next` are the ray's points at depth d and d + step_m (SecantPointsOnRay); false when b has no
+// surface there, its surface is more than `max_offset_m` away, or the intersection is grazing (|f'| < min_slope).
 bool IntersectRay(const SacView& b, const Eigen::Vector3d& at_depth, const Eigen::Vector3d& at_next, double depth_m,
                   double step_m, double max_offset_m, double min_slope, RayHit* hit);
 
