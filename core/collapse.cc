@@ -8,14 +8,18 @@
 
 #include "core/depth_combine.h"
 #include "core/method_views.h"
+#include "core/patch_grid.h"
 #include "core/redundancy.h"
 #include "core/sac_tolerance.h"
 
 namespace sacfuse {
 namespace {
 
-constexpr int kRowsPerBlock = 16;
-constexpr int kBlocksPerBatch = 64;
+// Pixels are visited in patches (core/patch_grid.h); the points of a band of patches are put back into row order
+// before they are written, so the output is that of a row-by-row visit.
+constexpr int kPatchRows = 32;
+constexpr int kPatchCols = 64;
+constexpr int kBandsPerBatch = 32;  // rows buffered at once: kPatchRows x kBandsPerBatch
 constexpr int kMaxCoverageHops = 4;  // chains of choices longer than this are treated as not covering
 
 
@@ -42,7 +46,8 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                        PointSink& sink) {
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
-  const int num_blocks = (depth.height + kRowsPerBlock - 1) / kRowsPerBlock;
+  const PatchGrid grid(depth.height, depth.width, kPatchRows, kPatchCols);
+  const int patches_per_band = grid.patches_per_band();
   CollapseStats total;
   const bool combine = options.combine == "average";
   DepthCombineOptions combine_options;
@@ -53,15 +58,23 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                            : options.combine_weights == "noise" ? CombineWeights::kNoise
                                                                 : CombineWeights::kView;
   const bool best_view = options.collapse == "best_view";
-  std::vector<std::vector<FusedPoint>> block_points(kBlocksPerBatch);
-  std::vector<CollapseStats> block_stats(kBlocksPerBatch);
+  // Per patch of the batch: its points in row order and the row of each.
+  struct PatchOutput {
+    std::vector<FusedPoint> points;
+    std::vector<int> rows;
+    CollapseStats stats;
+  };
+  std::vector<PatchOutput> patch_out(static_cast<size_t>(kBandsPerBatch) * patches_per_band);
+  std::vector<FusedPoint> band_points;
 
-  auto process_block = [&](int block, std::vector<FusedPoint>& out, CollapseStats& stats) {
+  auto process_patch = [&](const PixelWindow& patch, PatchOutput& result) {
+    std::vector<FusedPoint>& out = result.points;
+    CollapseStats& stats = result.stats;
     out.clear();
+    result.rows.clear();
     stats = CollapseStats{};
-    const int row_end = std::min(depth.height, (block + 1) * kRowsPerBlock);
-    for (int row = block * kRowsPerBlock; row < row_end; ++row) {
-      for (int col = 0; col < depth.width; ++col) {
+    for (int row = patch.row_begin; row < patch.row_end; ++row) {
+      for (int col = patch.col_begin; col < patch.col_end; ++col) {
         const float d = depth.at(row, col);
         if (!IsValidDepth(d)) continue;
         const Eigen::Vector3d point = PixelPoint(view, row, col, d);
@@ -133,17 +146,31 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         p.rgb = PixelColour(view, row, col);
         p.view_index = view.view.index;
         out.push_back(p);
+        result.rows.push_back(row);
       }
     }
     stats.emitted = out.size();
   };
 
-  for (int first = 0; first < num_blocks; first += kBlocksPerBatch) {
-    const int count = std::min(kBlocksPerBatch, num_blocks - first);
-    tbb::parallel_for(0, count, [&](int i) { process_block(first + i, block_points[i], block_stats[i]); });
-    for (int i = 0; i < count; ++i) {
-      if (!block_points[i].empty()) sink.Write(block_points[i].data(), block_points[i].size());
-      total += block_stats[i];
+  for (int first = 0; first < grid.bands(); first += kBandsPerBatch) {
+    const int bands = std::min(kBandsPerBatch, grid.bands() - first);
+    const int first_patch = first * patches_per_band;
+    tbb::parallel_for(0, bands * patches_per_band,
+                      [&](int i) { process_patch(grid.Patch(first_patch + i), patch_out[i]); });
+    for (int b = 0; b < bands; ++b) {
+      // Row order: each patch holds its rows in order, and the patches of a band lie left to right.
+      PatchOutput* band = &patch_out[static_cast<size_t>(b) * patches_per_band];
+      std::vector<size_t> next(patches_per_band, 0);
+      band_points.clear();
+      for (int row = grid.BandRowBegin(first + b); row < grid.BandRowEnd(first + b); ++row) {
+        for (int p = 0; p < patches_per_band; ++p) {
+          for (size_t& k = next[p]; k < band[p].points.size() && band[p].rows[k] == row; ++k) {
+            band_points.push_back(band[p].points[k]);
+          }
+        }
+      }
+      if (!band_points.empty()) sink.Write(band_points.data(), band_points.size());
+      for (int p = 0; p < patches_per_band; ++p) total += band[p].stats;
     }
   }
   return total;

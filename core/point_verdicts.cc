@@ -3,9 +3,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <utility>
+
+#include <tbb/parallel_for.h>
 
 #include "core/method_views.h"
 #include "core/sac_tolerance.h"
@@ -55,18 +58,28 @@ bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, 
 
 // Whether at least options.free_space_min_views of `judges` see through X (see the header). `neighbor_slot[b]`: the
 // index of view b in the neighbour list whose lookups `neighbor_hits` holds, or -1 (those are not looked up again).
+// The other judges are read through `ceilings` first (DepthCeiling): a view whose deepest valid depth around X's
+// projection is not beyond X by more than the margin cannot see through X, and its depth map is not read.
 bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point, double d,
                  const std::vector<uint32_t>& judges, const std::vector<int>& neighbor_slot,
-                 const DepthLookup* neighbor_hits, const std::vector<double>& noise_factor, const SacOptions& options) {
+                 const DepthLookup* neighbor_hits, const std::vector<DepthCeiling>& ceilings,
+                 const std::vector<double>& noise_factor, const SacOptions& options) {
   const double sigma_own = noise_factor.empty() ? 0.0 : DepthSigmaM(views, noise_factor, v, d);
   int count = 0;
   for (const uint32_t b : judges) {
     if (b == v) continue;
-    const DepthLookup hit = neighbor_slot[b] >= 0 ? neighbor_hits[neighbor_slot[b]] : LookupDepth(views[b], point);
-    if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
+    const bool looked_up = neighbor_slot[b] >= 0;
+    DepthLookup hit =
+        looked_up ? neighbor_hits[neighbor_slot[b]] : ProjectIntoDepth(views[b], views[b].PointInCamera(point));
+    if (!hit.inside) continue;
     const double sigma_pair =
         noise_factor.empty() ? 0.0 : PairSigmaM(sigma_own, DepthSigmaM(views, noise_factor, b, hit.z_m));
     const double margin = std::max(DepthToleranceM(views[b], hit.z_m, options), options.free_space_sigmas * sigma_pair);
+    if (!looked_up) {
+      if (ceilings[b].At(hit.row, hit.col) - hit.z_m <= margin) continue;
+      hit.stored_depth_m = views[b].depth->at(hit.row, hit.col);
+    }
+    if (!IsValidDepth(hit.stored_depth_m)) continue;
     if (hit.stored_depth_m - hit.z_m > margin && ++count >= options.free_space_min_views) return true;
   }
   return false;
@@ -94,6 +107,22 @@ PointVerdicts::PointVerdicts(const std::vector<SacView>& views, std::vector<std:
     // Value-initialised: every pixel starts "not judged" (0).
     memo_[v].reset(new std::atomic<uint8_t>[views[v].depth->num_pixels()]());
   }
+  ceilings_.resize(views.size());
+  if (options_.free_space_min_views > 0) {
+    tbb::parallel_for(size_t{0}, views.size(), [&](size_t v) { ceilings_[v] = DepthCeiling(*views[v].depth); });
+  }
+}
+
+DepthCeiling::DepthCeiling(const DepthMap& depth)
+    : blocks_((depth.width + kBlockPx - 1) / kBlockPx, (depth.height + kBlockPx - 1) / kBlockPx, 1,
+              -std::numeric_limits<float>::infinity()) {
+  for (int row = 0; row < depth.height; ++row) {
+    float* deepest = &blocks_.at(row / kBlockPx, 0);
+    for (int col = 0; col < depth.width; ++col) {
+      const float d = depth.at(row, col);
+      if (IsValidDepth(d)) deepest[col / kBlockPx] = std::max(deepest[col / kBlockPx], d);
+    }
+  }
 }
 
 PointVerdict PointVerdicts::At(uint32_t view, int row, int col) const {
@@ -116,8 +145,8 @@ PointVerdict PointVerdicts::Judge(uint32_t v, int row, int col) const {
   std::array<DepthLookup, kMaxJudgingViews> hits;
   for (size_t k = 0; k < near.size(); ++k) hits[k] = LookupDepth(views_[near[k]], point);
   if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_)) return PointVerdict::kOutlier;
-  if (options_.free_space_min_views > 0 &&
-      InFreeSpace(views_, v, point, d, judges_[v], neighbor_slot_[v], hits.data(), noise_factor_, options_)) {
+  if (options_.free_space_min_views > 0 && InFreeSpace(views_, v, point, d, judges_[v], neighbor_slot_[v], hits.data(),
+                                                       ceilings_, noise_factor_, options_)) {
     return PointVerdict::kFreeSpace;
   }
   return PointVerdict::kPasses;

@@ -29,6 +29,21 @@
 
 namespace sacfuse {
 
+// The deepest valid depth of each kBlockPx x kBlockPx block of a depth map (-infinity where a block has none): an
+// upper bound on any pixel's stored depth that fits in cache (1/64 of the map). The free-space test reads it before
+// the depth map itself and skips the read where even the deepest depth of the block cannot see through the point;
+// the verdicts are exactly those of reading every pixel (issue 13).
+class DepthCeiling {
+ public:
+  static constexpr int kBlockPx = 8;
+  DepthCeiling() = default;
+  explicit DepthCeiling(const DepthMap& depth);
+  float At(int row, int col) const { return blocks_.at(row / kBlockPx, col / kBlockPx); }
+
+ private:
+  DepthMap blocks_;
+};
+
 enum class PointVerdict : uint8_t { kInvalid = 0, kOutlier = 1, kFreeSpace = 2, kPasses = 3 };
 
 // The verdicts of every pixel of every view of `views` (a tile's halo pixels too: the collapse consults them).
@@ -50,6 +65,7 @@ class PointVerdicts {
   std::vector<std::vector<uint32_t>> neighbors_, judges_;
   std::vector<std::vector<int>> neighbor_slot_;  // [v][b]: index of b in neighbors_[v], or -1
   std::vector<double> noise_factor_;
+  std::vector<DepthCeiling> ceilings_;  // per view (empty rasters when the free-space test is off)
   SacOptions options_;
   // Per view, row-major: 0 = not judged yet, else 1 + PointVerdict.
   std::vector<std::unique_ptr<std::atomic<uint8_t>[]>> memo_;

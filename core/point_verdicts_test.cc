@@ -3,6 +3,7 @@
 #include "core/point_verdicts.h"
 
 #include <algorithm>
+#include <limits>
 
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
@@ -71,6 +72,42 @@ TEST_F(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses
   // Off: nothing is free space.
   options.free_space_min_views = 0;
   EXPECT_EQ(PointVerdicts(views, others, others, {}, options).At(0, 45, 60), PointVerdict::kPasses);
+}
+
+// Judges that are not outlier neighbours are read through the depth ceiling first (DepthCeiling): a pit 20 m deep
+// in one pixel of view 1 raises the ceiling of its whole block, but only the view-0 pixel that lands on the pit is
+// seen through; its neighbour, landing in the same block, still passes. Same verdicts as reading every pixel.
+TEST_F(PointVerdictsTest, FreeSpaceThroughTheDepthCeilingMatchesEveryPixelRead) {
+  SyntheticBlock pit = BlockWithFloater();
+  pit.depths[1].at(10, 16) += 20.0f;  // view 0's pixel (10, 40) lands here (view 1 is 24 pixels further east)
+  const auto pit_views = pit.SacViews();
+  SacOptions options;
+  options.min_consistent_views = 1;
+  options.free_space_min_views = 1;
+  const std::vector<std::vector<uint32_t>> none(pit_views.size());
+  const PointVerdicts through_ceiling(pit_views, none, others, {}, options);
+  const PointVerdicts every_read(pit_views, others, others, {}, options);
+  EXPECT_EQ(through_ceiling.At(0, 10, 40), PointVerdict::kFreeSpace);
+  EXPECT_EQ(through_ceiling.At(0, 10, 41), PointVerdict::kPasses);
+  EXPECT_EQ(through_ceiling.At(0, 45, 60), PointVerdict::kFreeSpace);  // the floater
+  for (int r = 0; r < 90; r += 3) {
+    for (int c = 0; c < 120; ++c) ASSERT_EQ(through_ceiling.At(0, r, c), every_read.At(0, r, c)) << r << " " << c;
+  }
+}
+
+TEST(DepthCeilingTest, DeepestValidDepthPerBlock) {
+  DepthMap depth(10, 9, 1, 5.0f);
+  depth.at(1, 2) = 7.0f;
+  depth.at(3, 9) = 0.0f;                      // invalid: ignored
+  for (int r = 8; r < 9; ++r) {
+    for (int c = 8; c < 10; ++c) depth.at(r, c) = 0.0f;  // a block with no valid depth
+  }
+  const DepthCeiling ceiling(depth);
+  EXPECT_EQ(ceiling.At(0, 0), 7.0f);
+  EXPECT_EQ(ceiling.At(7, 7), 7.0f);
+  EXPECT_EQ(ceiling.At(3, 9), 5.0f);
+  EXPECT_EQ(ceiling.At(8, 0), 5.0f);
+  EXPECT_EQ(ceiling.At(8, 9), -std::numeric_limits<float>::infinity());
 }
 
 TEST_F(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {

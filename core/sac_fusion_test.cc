@@ -135,6 +135,23 @@ TEST(SacFusionTest, UnsupportedPointsAreRemoved) {
   EXPECT_EQ(stats.collapse.outliers, stats.collapse.input_pixels);
 }
 
+// The collapse visits pixels in patches (core/patch_grid.h) but writes each view's points in row order: one view
+// wider and taller than a patch, every pixel emitted, each point back at its own pixel.
+TEST(SacFusionTest, PointsOfAViewAreWrittenInRowOrder) {
+  SyntheticBlock block;
+  const View a = NadirView(0, kEast, kNorth, 500.0, 150, 100);
+  block.Add(a, PlaneDepth(a));
+  CollectingSink sink;
+  const auto views = block.SacViews();
+  RunSacFusion(views, TestOptions(), sink);
+  ASSERT_EQ(sink.points().size(), 150u * 100u);
+  for (size_t i = 0; i < sink.points().size(); ++i) {
+    const DepthLookup hit = LookupDepth(views[0], sink.points()[i].point_in_world);
+    ASSERT_TRUE(hit.inside);
+    ASSERT_EQ(hit.row * 150 + hit.col, static_cast<int>(i)) << "point " << i;
+  }
+}
+
 // Same output, point for point, for 1 and 2 threads (all correspondence strategies that need no input graphs).
 TEST(SacFusionTest, DeterministicAcrossThreadCounts) {
   SyntheticBlock block;

@@ -23,7 +23,7 @@ DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_wor
   return LookupDepthInCamera(view, view.PointInCamera(point_in_world));
 }
 
-DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& point_in_camera) {
+DepthLookup ProjectIntoDepth(const SacView& view, const Eigen::Vector3d& point_in_camera) {
   DepthLookup out;
   if (point_in_camera.z() <= 0) return out;
   const Eigen::Vector2d uv = view.depth_camera.Project(point_in_camera);
@@ -32,7 +32,12 @@ DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& poin
   out.col = static_cast<int>(uv.x());
   out.row = static_cast<int>(uv.y());
   out.z_m = point_in_camera.z();
-  out.stored_depth_m = view.depth->at(out.row, out.col);
+  return out;
+}
+
+DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& point_in_camera) {
+  DepthLookup out = ProjectIntoDepth(view, point_in_camera);
+  if (out.inside) out.stored_depth_m = view.depth->at(out.row, out.col);
   return out;
 }
 

@@ -48,6 +48,9 @@ struct DepthLookup {
   float stored_depth_m = 0.0f;  // the depth map's value at the pixel (<= 0 invalid)
 };
 DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_world);
+// Where a point already in the view's camera frame falls, without reading the depth map (stored_depth_m stays 0):
+// for callers that test the point's depth, or a bound on the stored depth, before paying for the read.
+DepthLookup ProjectIntoDepth(const SacView& view, const Eigen::Vector3d& point_in_camera);
 // The same for a point already in the view's camera frame (view.PointInCamera), for callers that test its depth
 // before paying for the read of the depth map.
 DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& point_in_camera);

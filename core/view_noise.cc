@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/depth_combine.h"
+#include "core/patch_grid.h"
 
 namespace sacfuse {
 namespace {
@@ -34,26 +35,35 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
   std::vector<std::vector<double>> ratio(others.size()), share(others.size());
-  for (int row = options.sample_step_px / 2; row < depth.height; row += options.sample_step_px) {
-    for (int col = options.sample_step_px / 2; col < depth.width; col += options.sample_step_px) {
-      const float d = depth.at(row, col);
-      if (!IsValidDepth(d)) continue;
-      const double gsd = view.GsdAt(d);
-      const double s_v = DepthNoiseScale(view, d);
-      const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, prior_k[v] * s_v, options.slope_step_sigmas);
-      const SecantPoints ray = SecantPointsOnRay(view, col + 0.5, row + 0.5, d, step_m);
-      for (size_t i = 0; i < others.size(); ++i) {
-        RayHit hit;
-        if (!IntersectRay(views[others[i]], ray.at_depth, ray.at_next, d, step_m, options.gate_gsd * gsd,
-                          options.min_slope, &hit)) {
-          continue;
-        }
-        const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);
-        const double total = s_v * s_v + s_b * s_b;
-        const double r = hit.depth_m - d;
-        ratio[i].push_back(r * r / total);
-        share[i].push_back(s_v * s_v / total);
+  auto add_sample = [&](int row, int col) {
+    const float d = depth.at(row, col);
+    if (!IsValidDepth(d)) return;
+    const double gsd = view.GsdAt(d);
+    const double s_v = DepthNoiseScale(view, d);
+    const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, prior_k[v] * s_v, options.slope_step_sigmas);
+    const SecantPoints ray = SecantPointsOnRay(view, col + 0.5, row + 0.5, d, step_m);
+    for (size_t i = 0; i < others.size(); ++i) {
+      RayHit hit;
+      if (!IntersectRay(views[others[i]], ray.at_depth, ray.at_next, d, step_m, options.gate_gsd * gsd,
+                        options.min_slope, &hit)) {
+        continue;
       }
+      const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);
+      const double total = s_v * s_v + s_b * s_b;
+      const double r = hit.depth_m - d;
+      ratio[i].push_back(r * r / total);
+      share[i].push_back(s_v * s_v / total);
+    }
+  };
+  // The grid is visited in patches of kPatchSamples x kPatchSamples samples (core/patch_grid.h); the medians below
+  // do not depend on the order of the samples.
+  constexpr int kPatchSamples = 8;
+  const int step = options.sample_step_px;
+  const PatchGrid grid(depth.height, depth.width, kPatchSamples * step, kPatchSamples * step);
+  for (int p = 0; p < grid.size(); ++p) {
+    const PixelWindow patch = grid.Patch(p);
+    for (int row = patch.row_begin + step / 2; row < patch.row_end; row += step) {
+      for (int col = patch.col_begin + step / 2; col < patch.col_end; col += step) add_sample(row, col);
     }
   }
   std::vector<PairRow> rows;
