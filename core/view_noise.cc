@@ -58,7 +58,12 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
   // The grid is visited in patches of kPatchSamples x kPatchSamples samples (core/patch_grid.h); the medians below
   // do not depend on the order of the samples.
   constexpr int kPatchSamples = 8;
-  const int step = options.sample_step_px;
+  const int step =
+      options.max_samples_per_view <= 0
+          ? options.sample_step_px
+          : std::max(options.sample_step_px,
+                     static_cast<int>(std::ceil(std::sqrt(static_cast<double>(depth.num_pixels()) /
+                                                          options.max_samples_per_view))));
   const PatchGrid grid(depth.height, depth.width, kPatchSamples * step, kPatchSamples * step);
   for (int p = 0; p < grid.size(); ++p) {
     const PixelWindow patch = grid.Patch(p);
