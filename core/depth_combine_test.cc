@@ -151,6 +151,14 @@ TEST(ViewNoiseTest, RecoversTheRatioOfDepthNoiseBetweenViews) {
   // Without overlapping views there is nothing to estimate: all 1.
   const std::vector<double> alone = EstimateViewNoiseFactors(s.views, {{}, {}, {}, {}}, options);
   for (double x : alone) EXPECT_EQ(x, 1.0);
+  // The sample cap widens the step on these 120 x 90 views: ~300 samples per view (step 6) still give the ratio;
+  // ~20 (step 24) leave every pair below min_samples (50), so nothing is estimated.
+  options.max_samples_per_view = 300;
+  const std::vector<double> capped = EstimateViewNoiseFactors(s.views, others, options);
+  ASSERT_EQ(capped.size(), 4u);
+  EXPECT_NEAR((capped[2] + capped[3]) / (capped[0] + capped[1]), 2.0, 0.4);
+  options.max_samples_per_view = 20;
+  for (double x : EstimateViewNoiseFactors(s.views, others, options)) EXPECT_EQ(x, 1.0);
 }
 
 // Wide nadir views (f = 300 px at 100 m: GSD 0.33 m) with baselines of 0.5-1 flying heights, so one GSD along a
