@@ -42,7 +42,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                        const std::vector<uint32_t>& chosen_view, const std::vector<uint32_t>& redundancy_judges,
                        const std::vector<std::vector<uint32_t>>& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
-                       const SacOptions& options, const std::function<bool(const Eigen::Vector3d&)>& owner,
+                       const SacOptions& options, const OwnedRegion& owner,
                        PointSink& sink) {
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
@@ -73,12 +73,17 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
     out.clear();
     result.rows.clear();
     stats = CollapseStats{};
+    const WindowOwnership ownership = ClassifyWindow(view, patch, owner);
+    if (ownership.kind == WindowOwnership::kNone) {
+      stats.not_owned = ownership.valid_pixels;
+      return;
+    }
     for (int row = patch.row_begin; row < patch.row_end; ++row) {
       for (int col = patch.col_begin; col < patch.col_end; ++col) {
         const float d = depth.at(row, col);
         if (!IsValidDepth(d)) continue;
         const Eigen::Vector3d point = PixelPoint(view, row, col, d);
-        if (owner && !owner(point)) {
+        if (ownership.kind == WindowOwnership::kSome && !owner.Contains(point)) {
           ++stats.not_owned;
           continue;
         }

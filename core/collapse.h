@@ -11,9 +11,9 @@
 // in favour of another view is emitted when it passes its own outlier and free-space tests (core/point_verdicts.h);
 // the other view's pixel must pass them too, so no pixel is dropped in favour of an outlier.
 #include <cstdint>
-#include <functional>
 #include <vector>
 
+#include "core/owned_region.h"
 #include "core/point.h"
 #include "core/point_verdicts.h"
 #include "core/sac_nodes.h"
@@ -48,13 +48,13 @@ struct CollapseStats {
 // Emits the fused points of view `v` to `sink` in row order (deterministic for any thread count).
 // `redundancy_judges`: the views searched for a better view (core/redundancy.h, RedundancySearchOrder);
 // `combine_views` (fusion.combine: average) refine the emitted depths, weighted with the views'
-// `noise_factor` (core/view_noise.h; empty = equal). Pixels whose own point `owner` rejects are skipped and not
-// counted (empty owner = all pixels).
+// `noise_factor` (core/view_noise.h; empty = equal). Pixels whose own point `owner` does not own are skipped and
+// not counted (core/owned_region.h; patches wholly inside or outside it are decided at once).
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
                        const std::vector<uint32_t>& chosen_view, const std::vector<uint32_t>& redundancy_judges,
                        const std::vector<std::vector<uint32_t>>& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
-                       const SacOptions& options, const std::function<bool(const Eigen::Vector3d&)>& owner,
+                       const SacOptions& options, const OwnedRegion& owner,
                        PointSink& sink);
 
 }  // namespace sacfuse

@@ -11,6 +11,7 @@
 
 #include "core/fusion_stats.h"
 #include "core/method_views.h"
+#include "core/owned_region.h"
 #include "core/point.h"
 #include "core/sac_view.h"
 
@@ -26,15 +27,13 @@ struct FusionNeeds {
   bool owns_pixels = false;
 };
 
-// Which pixels (or points) of the views a run emits, judged on a world point: a tile's core. Empty = all.
-using PixelOwner = std::function<bool(const Eigen::Vector3d& point_in_world)>;
 
 // Where one run sits in the block.
 struct FusionScope {
   const ViewPlan* plan = nullptr;           // neighbours and order, positions in the views (needs.block_geometry)
   double gsd_m = 0.0;                       // the block's GSD, metres (needs.block_geometry)
   const Box2d* region_xy = nullptr;  // the XY box the views were cut to (a tile's halo); null = unbounded
-  PixelOwner owns;                          // empty = every pixel
+  OwnedRegion owns;                  // which pixels (or points) the run emits: a tile's core (default: all)
 };
 
 class FusionMethod {

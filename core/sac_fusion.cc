@@ -30,7 +30,7 @@ class StageTimer {
 }  // namespace
 
 SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& options, PointSink& sink,
-                      const SacProgress& progress, const PixelOwner& owner) {
+                      const SacProgress& progress, const OwnedRegion& owner) {
   ValidateSacOptions(options);
   SacStats stats;
   StageTimer timer(&stats);

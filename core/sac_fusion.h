@@ -31,10 +31,10 @@ struct SacStats {
 using SacProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
 // Fuses `views` and streams the points to `sink`, view by view in input order. Deterministic for any thread count.
-// `owner` (core/fusion_method.h) is judged on each pixel's own back-projected point (before the averaging combine
+// `owner` (core/owned_region.h) is judged on each pixel's own back-projected point (before the averaging combine
 // moves it along its ray), so that tiles sharing a halo emit every pixel exactly once although their averages
 // differ slightly.
 SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& options, PointSink& sink,
-                      const SacProgress& progress = {}, const PixelOwner& owner = {});
+                      const SacProgress& progress = {}, const OwnedRegion& owner = {});
 
 }  // namespace sacfuse

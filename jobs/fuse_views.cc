@@ -1,24 +1,18 @@
 #include "jobs/fuse_views.h"
 
 #include "core/error.h"
+#include "core/owned_region.h"
 #include "jobs/point_sinks.h"
 
 namespace sacfuse {
 namespace {
 
-// Valid depth pixels per view whose own point the scope owns (all of them without an owner).
-void CountInput(const std::vector<SacView>& views, const PixelOwner& owns, FusionStats* stats) {
+// Valid depth pixels per view whose own point the scope owns.
+void CountInput(const std::vector<SacView>& views, const OwnedRegion& owns, FusionStats* stats) {
   stats->input_pixels = 0;
   stats->input_per_view.assign(views.size(), 0);
   for (size_t i = 0; i < views.size(); ++i) {
-    const DepthMap& d = *views[i].depth;
-    uint64_t n = 0;
-    for (int row = 0; row < d.height; ++row) {
-      for (int col = 0; col < d.width; ++col) {
-        const float z = d.at(row, col);
-        if (IsValidDepth(z) && (!owns || owns(PixelPoint(views[i], row, col, z)))) ++n;
-      }
-    }
+    const uint64_t n = CountOwnedPixels(views[i], owns);
     stats->input_per_view[i] = n;
     stats->input_pixels += n;
   }
@@ -43,7 +37,7 @@ FusedViews FuseViews(const FusionMethod& method, const ViewSource& source, const
   }
   CountingSink written(sink);
   OwnedPointsSink owned(scope.owns, written);
-  const bool filter_here = scope.owns && !needs.owns_pixels;
+  const bool filter_here = !scope.owns.OwnsEverything() && !needs.owns_pixels;
   out.stats = method.Fuse(loaded->views, scope, filter_here ? static_cast<PointSink&>(owned) : written);
   CountInput(loaded->views, scope.owns, &out.stats);
   out.points_written = written.count();

@@ -57,7 +57,12 @@ class EverythingMethod : public FusionMethod {
   FusionNeeds needs_;
 };
 
-const PixelOwner kWestHalf = [](const Eigen::Vector3d& p) { return p.x() < kEast; };
+OwnedRegion WestHalf() {
+  OwnedRegion west;
+  west.max.x() = kEast;
+  return west;
+}
+const OwnedRegion kWestHalf = WestHalf();
 
 TEST(FuseViewsTest, KeepsTheOwnedPointsOfMethodsThatDoNotJudgePixels) {
   VectorSink sink;

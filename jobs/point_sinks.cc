@@ -12,13 +12,13 @@ void CountingSink::Write(const FusedPoint* points, size_t count) {
 }
 
 void OwnedPointsSink::Write(const FusedPoint* points, size_t count) {
-  if (!owns_) {
+  if (owns_.OwnsEverything()) {
     next_.Write(points, count);
     return;
   }
   kept_.clear();
   for (size_t i = 0; i < count; ++i) {
-    if (owns_(points[i].point_in_world)) kept_.push_back(points[i]);
+    if (owns_.Contains(points[i].point_in_world)) kept_.push_back(points[i]);
   }
   rejected_ += count - kept_.size();
   if (!kept_.empty()) next_.Write(kept_.data(), kept_.size());

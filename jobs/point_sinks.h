@@ -22,15 +22,15 @@ class CountingSink : public PointSink {
   std::vector<uint64_t> per_view_;
 };
 
-// Forwards the points `owns` accepts (all when it is empty) and counts the rest.
+// Forwards the points `owns` contains and counts the rest.
 class OwnedPointsSink : public PointSink {
  public:
-  OwnedPointsSink(PixelOwner owns, PointSink& next) : owns_(std::move(owns)), next_(next) {}
+  OwnedPointsSink(const OwnedRegion& owns, PointSink& next) : owns_(owns), next_(next) {}
   void Write(const FusedPoint* points, size_t count) override;
   uint64_t rejected() const { return rejected_; }
 
  private:
-  PixelOwner owns_;
+  OwnedRegion owns_;
   PointSink& next_;
   std::vector<FusedPoint> kept_;
   uint64_t rejected_ = 0;

@@ -70,9 +70,7 @@ FusedViews FuseTile(const DepthBlock& input, const TilePlan& plan, const Planned
   halo.Extend(tile.halo.max);
   FusionScope scope;
   scope.region_xy = &halo;
-  const TileGrid& grid = plan.grid;
-  const TileIndex index = tile.index;
-  scope.owns = [&grid, index](const Eigen::Vector3d& p) { return grid.TileOf(p.x(), p.y()) == index; };
+  scope.owns = plan.grid.OwnedRegionOf(tile.index);
   const TileViewSource source(input, plan, tile, superpixel_cache_dir, cluster_cache);
   return FuseViews(*method, source, &geometry, std::move(scope), sink);
 }

@@ -132,6 +132,17 @@ bool TileGrid::CoreContains(const TileIndex& t, double x, double y) const {
   return x >= b.min.x() && x < b.max.x() && y >= b.min.y() && y < b.max.y();
 }
 
+OwnedRegion TileGrid::OwnedRegionOf(const TileIndex& t) const {
+  OwnedRegion region;
+  if (single_) return region;
+  const Box2d core = CoreBounds(t);
+  if (t.ix > 0) region.min.x() = core.min.x();
+  if (t.iy > 0) region.min.y() = core.min.y();
+  if (t.ix + 1 < num_x_) region.max.x() = core.max.x();
+  if (t.iy + 1 < num_y_) region.max.y() = core.max.y();
+  return region;
+}
+
 TileIndex TileGrid::TileOf(double x, double y) const {
   if (single_) return {0, 0};
   const long long ix = std::clamp<long long>(AxisIndex(x, kx0_), 0, num_x_ - 1);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/owned_region.h"
 #include "tiling/footprint.h"
 
 namespace sacfuse {
@@ -74,6 +75,8 @@ class TileGrid {
   // depth lies outside the planning height range) belong to the nearest border tile (clamped), so no point is
   // ever lost or duplicated.
   TileIndex TileOf(double x, double y) const;
+  // The points TileOf assigns to tile t, as a region: its core, open to infinity beyond the grid's outer edges.
+  OwnedRegion OwnedRegionOf(const TileIndex& t) const;
 
  private:
   // Edge coordinate k (absolute multiple of tile size) along one axis; the single formula used everywhere.

@@ -74,6 +74,29 @@ TEST(TileGridTest, PointsBeyondTheGridGoToTheNearestBorderTile) {
   EXPECT_EQ(grid.TileOf(100.0, -1.0), (TileIndex{1, 0}));
 }
 
+TEST(TileGridTest, OwnedRegionOfATileHoldsExactlyThePointsTileOfGivesIt) {
+  const TileGrid grid(Area(390000.0, 5705000.0, 390079.9, 5705059.9), 20.0, 5.0);
+  const double eps[] = {-1e-9, 0.0, 1e-9};
+  std::vector<double> xs = {389000.0, 390079.9, 391000.0}, ys = {5704000.0, 5705059.9, 5706000.0};
+  for (double bx : {390000.0, 390020.0, 390040.0, 390060.0, 390080.0}) {
+    for (double e : eps) xs.push_back(bx + e);
+  }
+  for (double by : {5705000.0, 5705020.0, 5705040.0, 5705060.0}) {
+    for (double e : eps) ys.push_back(by + e);
+  }
+  for (const TileIndex& t : grid.Tiles()) {
+    const OwnedRegion region = grid.OwnedRegionOf(t);
+    for (double x : xs) {
+      for (double y : ys) {
+        EXPECT_EQ(region.Contains({x, y, 100.0}), grid.TileOf(x, y) == t)
+            << TileGrid::Id(t) << " " << std::setprecision(17) << x << " " << y;
+      }
+    }
+  }
+  EXPECT_FALSE(grid.OwnedRegionOf({1, 1}).OwnsEverything());
+  EXPECT_TRUE(TileGrid(Area(0.0, 0.0, 9.0, 9.0), 0.0, 5.0).OwnedRegionOf({0, 0}).OwnsEverything());
+}
+
 TEST(TileGridTest, ZeroSizeIsOneTileCoveringEverything) {
   const Box2d area = Area(390013.2, 5705007.5, 390061.0, 5705040.0);
   const TileGrid grid(area, 0.0, 5.0);
