@@ -99,6 +99,7 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   double weight_sum = weight(v, depth_m, 1.0);
   double weighted_depth = weight_sum * depth_m;
   CombinedDepth out;
+  for (const uint32_t nb : neighbors) PrefetchDepthAround(views[nb], ray.at_depth);
   for (const uint32_t nb : neighbors) {
     RayHit hit;
     if (!IntersectRay(views[nb], ray.at_depth, ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;

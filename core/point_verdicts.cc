@@ -143,7 +143,15 @@ PointVerdict PointVerdicts::Judge(uint32_t v, int row, int col) const {
   // Each point is looked up once in each neighbour; the free-space test reuses those lookups.
   const std::vector<uint32_t>& near = neighbors_[v];
   std::array<DepthLookup, kMaxJudgingViews> hits;
-  for (size_t k = 0; k < near.size(); ++k) hits[k] = LookupDepth(views_[near[k]], point);
+  // Projected into every neighbour first, read after: the reads' cache misses overlap (PrefetchDepthPixel).
+  for (size_t k = 0; k < near.size(); ++k) {
+    const SacView& b = views_[near[k]];
+    hits[k] = ProjectIntoDepth(b, b.PointInCamera(point));
+    if (hits[k].inside) PrefetchDepthPixel(b, hits[k].row, hits[k].col);
+  }
+  for (size_t k = 0; k < near.size(); ++k) {
+    if (hits[k].inside) hits[k].stored_depth_m = views_[near[k]].depth->at(hits[k].row, hits[k].col);
+  }
   if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_)) return PointVerdict::kOutlier;
   if (options_.free_space_min_views > 0 && InFreeSpace(views_, v, point, d, judges_[v], neighbor_slot_[v], hits.data(),
                                                        ceilings_, noise_factor_, options_)) {

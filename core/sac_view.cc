@@ -1,6 +1,7 @@
 #include "core/sac_view.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace sacfuse {
 
@@ -39,6 +40,20 @@ DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& poin
   DepthLookup out = ProjectIntoDepth(view, point_in_camera);
   if (out.inside) out.stored_depth_m = view.depth->at(out.row, out.col);
   return out;
+}
+
+void PrefetchDepthAround(const SacView& view, const Eigen::Vector3d& point_in_world) {
+  const Eigen::Vector3d p = view.PointInCamera(point_in_world);
+  if (p.z() <= 0) return;
+  const Eigen::Vector2d uv = view.depth_camera.Project(p);
+  // Pixel centres at +0.5: the sample's top-left pixel, clamped so that its 2 x 2 block lies inside.
+  const double x = uv.x() - 0.5, y = uv.y() - 0.5;
+  const DepthMap& depth = *view.depth;
+  if (!(x >= -1.0 && y >= -1.0 && x < depth.width && y < depth.height)) return;
+  const int col = std::clamp(static_cast<int>(std::floor(x)), 0, depth.width - 1);
+  const int row = std::clamp(static_cast<int>(std::floor(y)), 0, std::max(0, depth.height - 2));
+  PrefetchDepthPixel(view, row, col);
+  if (row + 1 < depth.height) PrefetchDepthPixel(view, row + 1, col);
 }
 
 std::array<uint8_t, 3> PixelColour(const SacView& view, int row, int col) {

@@ -42,6 +42,7 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
     const double s_v = DepthNoiseScale(view, d);
     const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, prior_k[v] * s_v, options.slope_step_sigmas);
     const SecantPoints ray = SecantPointsOnRay(view, col + 0.5, row + 0.5, d, step_m);
+    for (const uint32_t b : others) PrefetchDepthAround(views[b], ray.at_depth);
     for (size_t i = 0; i < others.size(); ++i) {
       RayHit hit;
       if (!IntersectRay(views[others[i]], ray.at_depth, ray.at_next, d, step_m, options.gate_gsd * gsd,
