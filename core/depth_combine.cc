@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace sacfuse {
 
@@ -31,34 +33,38 @@ bool SampleDepth(const DepthMap& depth, double u, double v, double max_spread_m,
 
 namespace {
 
-// f(t) of the header for view b at world point x: stored depth minus the point's depth; false when b has no
-// surface there.
-bool SurfaceOffset(const SacView& b, const Eigen::Vector3d& point_in_world, double max_spread_m, double* offset_m,
-                   double* z_m) {
-  const Eigen::Vector3d p = b.PointInCamera(point_in_world);
-  if (p.z() <= 0) return false;
-  const Eigen::Vector2d uv = b.depth_camera.Project(p);
+// f(t) of the header for view b at world point x (`at`, x projected into b): stored depth minus the point's depth;
+// false when b has no surface there.
+bool SurfaceOffset(const SacView& b, const ViewPoint& at, double max_spread_m, double* offset_m, double* z_m) {
+  if (!at.in_front) return false;
   double stored = 0.0;
-  if (!SampleDepth(*b.depth, uv.x(), uv.y(), max_spread_m, &stored)) return false;
-  *offset_m = stored - p.z();
-  *z_m = p.z();
+  if (!SampleDepth(*b.depth, at.uv.x(), at.uv.y(), max_spread_m, &stored)) return false;
+  *offset_m = stored - at.z_m;
+  *z_m = at.z_m;
   return true;
 }
 
 }  // namespace
+
+void CheckCombineViewCount(size_t num_views) {
+  if (num_views > kMaxCombineViews) {
+    throw std::invalid_argument("depth combine: " + std::to_string(num_views) + " views to consult, at most " +
+                                std::to_string(kMaxCombineViews) + " are supported");
+  }
+}
 
 SecantPoints SecantPointsOnRay(const SacView& view, double u, double v_px, double depth_m, double step_m) {
   const Eigen::Vector3d ray_cam = view.depth_camera.Unproject(u, v_px, 1.0);
   return {view.world_from_cam * (ray_cam * depth_m), view.world_from_cam * (ray_cam * (depth_m + step_m))};
 }
 
-bool IntersectRay(const SacView& b, const Eigen::Vector3d& at_depth, const Eigen::Vector3d& at_next, double depth_m,
+bool IntersectRay(const SacView& b, const ViewPoint& at_depth_in_b, const Eigen::Vector3d& at_next, double depth_m,
                   double step_m, double max_offset_m, double min_slope, RayHit* hit) {
   const double spread_m = 2.0 * max_offset_m;
   double f0 = 0, z0 = 0, f1 = 0, z1 = 0;
-  if (!SurfaceOffset(b, at_depth, spread_m, &f0, &z0)) return false;
+  if (!SurfaceOffset(b, at_depth_in_b, spread_m, &f0, &z0)) return false;
   if (std::abs(f0) > spread_m) return false;  // another surface (occluder, occluded, blunder)
-  if (!SurfaceOffset(b, at_next, spread_m, &f1, &z1)) return false;
+  if (!SurfaceOffset(b, ProjectIntoView(b, at_next), spread_m, &f1, &z1)) return false;
   const double slope = (f1 - f0) / step_m;
   if (std::abs(slope) < min_slope) return false;
   const double t = depth_m - f0 / slope;
@@ -99,10 +105,18 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   double weight_sum = weight(v, depth_m, 1.0);
   double weighted_depth = weight_sum * depth_m;
   CombinedDepth out;
-  for (const uint32_t nb : neighbors) PrefetchDepthAround(views[nb], ray.at_depth);
-  for (const uint32_t nb : neighbors) {
+  // Projected into every neighbour first and their samples prefetched, so that the reads' cache misses overlap.
+  CheckCombineViewCount(neighbors.size());
+  ViewPoint at_depth[kMaxCombineViews];
+  const size_t num = neighbors.size();
+  for (size_t i = 0; i < num; ++i) {
+    at_depth[i] = ProjectIntoView(views[neighbors[i]], ray.at_depth);
+    PrefetchDepthAround(views[neighbors[i]], at_depth[i]);
+  }
+  for (size_t i = 0; i < num; ++i) {
+    const uint32_t nb = neighbors[i];
     RayHit hit;
-    if (!IntersectRay(views[nb], ray.at_depth, ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
+    if (!IntersectRay(views[nb], at_depth[i], ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
     const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
     weight_sum += w;
     weighted_depth += w * hit.depth_m;

@@ -45,6 +45,7 @@
 //    within 3 sigma (+0.03); a 16 GSD gate (small 84.17 but tiny 97.48 -> 96.91); a gate per candidate of
 //    3 sigma of the pair's difference (small 82.60, tiny 97.42); the outlier test on the averaged point
 //    (small 81.79: it keeps noisy pixels the strict test on the own depth drops).
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -90,10 +91,16 @@ struct SecantPoints {
 };
 SecantPoints SecantPointsOnRay(const SacView& view, double u, double v_px, double depth_m, double step_m);
 
-// `at_depth` and `at_next` are the ray's points at depth d and d + step_m (SecantPointsOnRay); false when b has no
-// surface there, its surface is more than `max_offset_m` away, or the intersection is grazing (|f'| < min_slope).
-bool IntersectRay(const SacView& b, const Eigen::Vector3d& at_depth, const Eigen::Vector3d& at_next, double depth_m,
+// `at_depth_in_b` and `at_next` are the ray's points at depth d (projected into b: ProjectIntoView) and d + step_m
+// (SecantPointsOnRay); false when b has no surface there, its surface is more than `max_offset_m` away, or the
+// intersection is grazing (|f'| < min_slope).
+bool IntersectRay(const SacView& b, const ViewPoint& at_depth_in_b, const Eigen::Vector3d& at_next, double depth_m,
                   double step_m, double max_offset_m, double min_slope, RayHit* hit);
+
+// The most views a combine or a noise estimate consults per point (SacOptions::combine_max_views is at most 64);
+// CheckCombineViewCount throws std::invalid_argument for more.
+inline constexpr size_t kMaxCombineViews = 64;
+void CheckCombineViewCount(size_t num_views);
 
 struct CombinedDepth {
   double depth_m = 0.0;   // refined depth along the view's ray (the input depth when nothing agreed)

@@ -66,13 +66,12 @@ TEST(IntersectRayTest, FindsWhereAnotherDepthMapPutsATiltedSurfaceOnTheRay) {
     const double gsd = views[0].GsdAt(d);
     const Eigen::Vector3d ray = views[0].depth_camera.Unproject(col + 0.5, row + 0.5, 1.0);
     RayHit hit;
-    ASSERT_TRUE(IntersectRay(views[1], views[0].world_from_cam * (ray * d), views[0].world_from_cam * (ray * (d + gsd)),
-                             d, gsd, 12 * gsd, 0.2, &hit))
-        << row << " " << col;
+    const ViewPoint at_depth = ProjectIntoView(views[1], views[0].world_from_cam * (ray * d));
+    const Eigen::Vector3d at_next = views[0].world_from_cam * (ray * (d + gsd));
+    ASSERT_TRUE(IntersectRay(views[1], at_depth, at_next, d, gsd, 12 * gsd, 0.2, &hit)) << row << " " << col;
     EXPECT_NEAR(hit.depth_m, lowered.at(row, col), 0.01) << row << " " << col;
     // A gate narrower than the 0.5 m offset rejects it.
-    EXPECT_FALSE(IntersectRay(views[1], views[0].world_from_cam * (ray * d),
-                              views[0].world_from_cam * (ray * (d + gsd)), d, gsd, 0.2, 0.2, &hit));
+    EXPECT_FALSE(IntersectRay(views[1], at_depth, at_next, d, gsd, 0.2, 0.2, &hit));
   }
 }
 

@@ -42,12 +42,10 @@ DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& poin
   return out;
 }
 
-void PrefetchDepthAround(const SacView& view, const Eigen::Vector3d& point_in_world) {
-  const Eigen::Vector3d p = view.PointInCamera(point_in_world);
-  if (p.z() <= 0) return;
-  const Eigen::Vector2d uv = view.depth_camera.Project(p);
+void PrefetchDepthAround(const SacView& view, const ViewPoint& at) {
+  if (!at.in_front) return;
   // Pixel centres at +0.5: the sample's top-left pixel, clamped so that its 2 x 2 block lies inside.
-  const double x = uv.x() - 0.5, y = uv.y() - 0.5;
+  const double x = at.uv.x() - 0.5, y = at.uv.y() - 0.5;
   const DepthMap& depth = *view.depth;
   if (!(x >= -1.0 && y >= -1.0 && x < depth.width && y < depth.height)) return;
   const int col = std::clamp(static_cast<int>(std::floor(x)), 0, depth.width - 1);

@@ -60,9 +60,21 @@ DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3d& poin
 // and most of SAC's time was waiting for these misses). They change no result.
 // Depth pixel (row, col), inside the raster.
 inline void PrefetchDepthPixel(const SacView& view, int row, int col) { __builtin_prefetch(&view.depth->at(row, col)); }
-// The 2 x 2 pixels around where a world point falls (a bilinear sample, SampleDepth in core/depth_combine.h), which
-// include the nearest pixel (LookupDepth). Nothing when the point is behind the view or outside its raster.
-void PrefetchDepthAround(const SacView& view, const Eigen::Vector3d& point_in_world);
+// Where a world point falls in a view: its depth there and its image coordinates in the depth raster (corner
+// convention). Only `in_front` is meaningful when it is false (the point lies behind the view).
+struct ViewPoint {
+  bool in_front;
+  double z_m;
+  Eigen::Vector2d uv;
+};
+inline ViewPoint ProjectIntoView(const SacView& view, const Eigen::Vector3d& point_in_world) {
+  const Eigen::Vector3d p = view.PointInCamera(point_in_world);
+  if (p.z() <= 0) return {false, 0.0, Eigen::Vector2d::Zero()};
+  return {true, p.z(), view.depth_camera.Project(p)};
+}
+// The 2 x 2 pixels around `at` (a bilinear sample, SampleDepth in core/depth_combine.h). Nothing when the point is
+// behind the view or outside its raster.
+void PrefetchDepthAround(const SacView& view, const ViewPoint& at);
 
 // The colour of depth pixel (row, col): the image pixel under its centre (the image may have another resolution
 // than the depth raster); mid grey when the view has no image.
