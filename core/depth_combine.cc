@@ -105,8 +105,8 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   double weight_sum = weight(v, depth_m, 1.0);
   double weighted_depth = weight_sum * depth_m;
   CombinedDepth out;
-  // Projected into every neighbour first and their samples prefetched, so that the reads' cache misses overlap.
   CheckCombineViewCount(neighbors.size());
+  // Projected into every neighbour first and their samples prefetched, so that the reads' cache misses overlap.
   ViewPoint at_depth[kMaxCombineViews];
   const size_t num = neighbors.size();
   for (size_t i = 0; i < num; ++i) {

@@ -2,7 +2,6 @@
 // The one interface every fusion method implements (SAC and the comparison methods): what it needs of the views
 // besides depth and colour, and Fuse(views, scope, sink) -> FusionStats. The job (jobs/fuse_views.h) loads the
 // views — a whole block or a tile's windows — and calls Fuse the same way for every method.
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,7 +25,6 @@ struct FusionNeeds {
   // point along its ray differently in each tile); false: the job keeps the emitted points the scope owns.
   bool owns_pixels = false;
 };
-
 
 // Where one run sits in the block.
 struct FusionScope {

@@ -1,7 +1,7 @@
 #include "core/owned_region.h"
 
 #include <algorithm>
-#include <array>
+#include <limits>
 
 #include "core/method_views.h"
 #include "core/patch_grid.h"
@@ -12,6 +12,10 @@ namespace {
 // Decisions on the corners' box keep this distance from the region's edges, metres: the corners and the pixels'
 // points are computed in double with rounding errors of ~1e-9 m at UTM coordinates.
 constexpr double kMarginM = 1e-3;
+// CountOwnedPixels' patches, pixels: the collapse's size (core/collapse.cc), small enough that most lie wholly inside
+// or outside a tile.
+constexpr int kCountPatchRows = 32;
+constexpr int kCountPatchCols = 64;
 
 }  // namespace
 
@@ -53,7 +57,7 @@ WindowOwnership ClassifyWindow(const SacView& view, const PixelWindow& window, c
 
 size_t CountOwnedPixels(const SacView& view, const OwnedRegion& region) {
   const DepthMap& depth = *view.depth;
-  const PatchGrid grid(depth.height, depth.width, 32, 64);
+  const PatchGrid grid(depth.height, depth.width, kCountPatchRows, kCountPatchCols);
   size_t owned = 0;
   for (int p = 0; p < grid.size(); ++p) {
     const PixelWindow patch = grid.Patch(p);
