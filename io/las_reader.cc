@@ -284,6 +284,15 @@ void LasReader::Rewind() {
   if (fseeko(r.file, static_cast<off_t>(r.header.offset_to_point_data), SEEK_SET) != 0) r.Fail("cannot seek");
 }
 
+const std::vector<uint8_t>& LasReader::laszip_vlr() const { return impl_->laszip_vlr; }
+
+bool LasReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points) {
+  Impl& r = *impl_;
+  if (!r.laz || !r.laz->ReadStoredChunk(bytes, points)) return false;
+  r.next += *points;
+  return true;
+}
+
 std::vector<LasPoint> ReadAllLasPoints(const std::string& path, LasHeader* header) {
   LasReader reader(path);
   if (header != nullptr) *header = reader.header();

@@ -31,6 +31,12 @@ class LasReader {
   // Back to the first point.
   void Rewind();
 
+  // LAZ files: the payload of the "laszip encoded" VLR (empty for LAS files).
+  const std::vector<uint8_t>& laszip_vlr() const;
+  // LAZ files: the next chunk as stored, undecoded, and its point count, when the reading stands at a chunk's
+  // start; Read continues after it. False for LAS files, at the end, or mid-chunk. (LasWriter::AppendLaz.)
+  bool ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points);
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/las_format.h"
+#include "io/las_reader.h"
 #include "io/laz_chunk_writer.h"
 
 namespace sacfuse {
@@ -118,14 +119,31 @@ struct LasWriter::Impl {
     return snapped;
   }
 
-  template <typename GetPoint>
-  void WriteChunk(size_t n, GetPoint get) {
+  void CheckWritable(uint64_t n) const {
     if (closed) throw Error(path + ": write after Close()");
     if (failed) throw Error(path + ": write after an earlier I/O error");
-    if (n == 0) return;
     if (version_minor < 4 && count + n > std::numeric_limits<uint32_t>::max()) {
       throw Error(path + ": LAS 1." + std::to_string(version_minor) + " holds at most 4294967295 points");
     }
+  }
+
+  // Takes points already stored elsewhere into the header's count, bounds (stored integers) and returns.
+  void CountStored(uint64_t n, const std::array<int32_t, 3>& lo, const std::array<int32_t, 3>& hi,
+                   const std::array<uint64_t, 15>& returns) {
+    for (int a = 0; a < 3; ++a) {
+      stored_min[a] = count == 0 ? lo[a] : std::min(stored_min[a], lo[a]);
+      stored_max[a] = count == 0 ? hi[a] : std::max(stored_max[a], hi[a]);
+    }
+    for (size_t r = 0; r < returns.size(); ++r) by_return[r] += returns[r];
+    count += n;
+  }
+
+  bool AppendLaz(LasReader& reader);
+
+  template <typename GetPoint>
+  void WriteChunk(size_t n, GetPoint get) {
+    CheckWritable(n);
+    if (n == 0) return;
     // Pass 1: validate the whole chunk, so that a rejected chunk leaves the file unchanged.
     const Eigen::Vector3d use_offset = OffsetFor(get(0), count);
     std::vector<uint8_t> scratch(record_length);
@@ -335,6 +353,55 @@ void LasWriter::Impl::Discard() {
   if (!temp_path.empty()) std::remove(temp_path.c_str());
 }
 
+bool LasWriter::Impl::AppendLaz(LasReader& reader) {
+  const LasHeader& h = reader.header();
+  if (!laz || !offset || reader.laszip_vlr() != laz->Vlr().data || h.version_minor != version_minor ||
+      h.point_format != pdrf ||
+      h.point_record_length != record_length || h.scale != scale || h.offset != *offset) {
+    return false;
+  }
+  std::array<int32_t, 3> lo, hi;  // the header's bounds as stored integers
+  for (int a = 0; a < 3; ++a) {
+    if (!lf::Quantise(h.min[a], scale[a], (*offset)[a], &lo[a]) ||
+        !lf::Quantise(h.max[a], scale[a], (*offset)[a], &hi[a])) {
+      return false;
+    }
+  }
+  CheckWritable(h.point_count);
+  if (h.point_count == 0) return true;
+  reader.Rewind();
+  const uint64_t full_chunks = h.point_count / LazChunkWriter::kChunkPoints;
+  const uint64_t copied_points = full_chunks * LazChunkWriter::kChunkPoints;
+  try {
+    std::vector<uint8_t> bytes;
+    uint64_t points = 0;
+    for (uint64_t c = 0; c < full_chunks; ++c) {
+      if (!reader.ReadStoredChunk(&bytes, &points) || points != LazChunkWriter::kChunkPoints) {
+        Fail("LAZ chunk " + std::to_string(c) + " of the file appended could not be copied");
+      }
+      WriteBytes(bytes.data(), bytes.size());
+      laz->AddStoredChunk(bytes.size());
+    }
+    // The last, shorter chunk is decoded and written like any points; the header's returns less its returns
+    // are the copied ones (LAS 1.2 headers count returns 1-5 only, and so does this writer's header then).
+    std::vector<LasPoint> tail;
+    reader.Read(&tail, static_cast<size_t>(h.point_count - copied_points));
+    std::array<uint64_t, 15> copied_returns = h.points_by_return;
+    const int counted_returns = version_minor >= 4 ? 15 : 5;
+    for (const LasPoint& p : tail) {
+      if (p.return_number < 1 || p.return_number > counted_returns) continue;
+      if (copied_returns[p.return_number - 1] == 0) Fail("the appended file's header does not count its returns");
+      --copied_returns[p.return_number - 1];
+    }
+    WriteChunk(tail.size(), [&](size_t i) -> const LasPoint& { return tail[i]; });
+    CountStored(copied_points, lo, hi, copied_returns);
+  } catch (...) {
+    failed = true;  // chunks may be written: the file cannot be completed
+    throw;
+  }
+  return true;
+}
+
 LasWriter::LasWriter(const std::string& path, const LasWriterOptions& options) : impl_(std::make_unique<Impl>()) {
   impl_->path = path;
   impl_->options = options;
@@ -354,6 +421,8 @@ void LasWriter::Write(const FusedPoint* points, size_t count) {
 void LasWriter::WritePoints(const LasPoint* points, size_t count) {
   impl_->WriteChunk(count, [&](size_t i) -> const LasPoint& { return points[i]; });
 }
+
+bool LasWriter::AppendLaz(LasReader& reader) { return impl_->AppendLaz(reader); }
 
 void LasWriter::Close() {
   Impl& w = *impl_;

@@ -17,6 +17,8 @@
 
 namespace sacfuse {
 
+class LasReader;
+
 struct LasWriterOptions {
   // 4: LAS 1.4 with point format 7 (default). 2: LAS 1.2 with point format 3.
   int version_minor = 4;
@@ -56,6 +58,14 @@ class LasWriter : public PointSink {
   // outside int32 after quantisation, view index >= 65535, classification > 31 in PDRF 0-3, a field the format
   // lacks...); nothing is clamped, and a rejected chunk is not written at all (the writer stays usable).
   void WritePoints(const LasPoint* points, size_t count);
+  // Appends every point of `reader` (rewound first) without decoding most of them, when it is a LAZ file with
+  // this writer's compressed layout (the same "laszip encoded" VLR: point format, record length, items, chunk
+  // size), scale and offset: its full chunks are copied as stored, the points of its last, shorter chunk go
+  // through WritePoints. Copied chunks land before records still buffered, so the file's point order is not the
+  // order of the calls (the points are the same). Counts, bounds and returns of the copied chunks come from
+  // `reader`'s header. Returns false, having written nothing, when `reader` does not qualify (then Read its
+  // points and WritePoints them).
+  bool AppendLaz(LasReader& reader);
   // Patches the header, fsyncs, renames into place. Throws on I/O errors (and leaves no file at the path).
   void Close();
 

@@ -53,6 +53,12 @@ const std::vector<std::vector<uint8_t>>& LazChunkWriter::Chunks(const uint8_t* r
   return chunks_;
 }
 
+void LazChunkWriter::AddStoredChunk(size_t bytes) {
+  if (bytes > std::numeric_limits<uint32_t>::max()) throw Error("LAZ chunk larger than 4 GiB");
+  entries_.push_back({static_cast<uint32_t>(kChunkPoints), static_cast<uint32_t>(bytes)});
+  total_bytes_ += bytes;
+}
+
 std::vector<uint8_t> LazChunkWriter::Table() const { return laz::EncodeChunkTable(entries_, false); }
 
 }  // namespace sacfuse

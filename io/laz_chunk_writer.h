@@ -30,6 +30,9 @@ class LazChunkWriter {
   // Compresses `count` (1..kBatchChunks x kChunkPoints) records into consecutive chunks of kChunkPoints records
   // (the last may be shorter); the chunks' bytes, in order, stay valid until the next call.
   const std::vector<std::vector<uint8_t>>& Chunks(const uint8_t* records, size_t count);
+  // Records a chunk of kChunkPoints records compressed elsewhere with this writer's VLR (copied from another
+  // file), written by the caller after the chunks made so far.
+  void AddStoredChunk(size_t bytes);
   // Bytes of all chunks made so far.
   uint64_t chunk_bytes() const { return total_bytes_; }
   // The chunk table of the chunks made so far.

@@ -193,6 +193,16 @@ void LazPointReader::Read(uint8_t* records, size_t count) {
   }
 }
 
+bool LazPointReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points) {
+  if (batch_pos_ != batch_valid_ || !batch_error_.empty() || next_chunk_ >= chunks_.size()) return false;
+  const Chunk& c = chunks_[next_chunk_];
+  bytes->resize(static_cast<size_t>(c.bytes));
+  ReadAt(c.start, bytes->data(), bytes->size());
+  *points = c.points;
+  ++next_chunk_;
+  return true;
+}
+
 void LazPointReader::Rewind() {
   next_chunk_ = 0;
   batch_pos_ = 0;

@@ -34,6 +34,10 @@ class LazPointReader {
   // are delivered first.
   void Read(uint8_t* records, size_t count);
 
+  // The next chunk as stored, undecoded, and its point count, when no decoded records are pending (the reading
+  // stands at a chunk's start); false at the end or mid-chunk. Read continues after it.
+  bool ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points);
+
   static constexpr size_t kBatchChunks = 8;         // chunks decoded in parallel
   static constexpr uint64_t kBatchPoints = 400000;  // points of a batch (8 chunks of the usual 50,000)
   void Rewind();

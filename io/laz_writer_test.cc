@@ -239,6 +239,80 @@ TEST(LazWriterTest, ParallelDecodingDeliversEveryPointBeforeACorruptChunk) {
   }
 }
 
+// AppendLaz (the tile merge) copies the full chunks of LAZ files of the writer's layout as stored and codes only
+// their last, shorter chunks: the file holds exactly the points of a point-by-point merge, full chunks first as
+// they come and buffered points after, with the header (count, bounds, returns) of the LAS twin of that order;
+// files of another layout, scale or offset, LAS files and LAS output are refused before anything is written.
+TEST(LazWriterTest, AppendLazCopiesFullChunksAndCodesTheLastOnes) {
+  TempDir dir;
+  for (const Layout& l : {Layout{4, 7}, Layout{2, 3}}) {
+    SCOPED_TRACE("LAS 1." + std::to_string(l.minor) + " PDRF " + std::to_string(l.pdrf));
+    const std::vector<LasPoint> a = MakePoints(l.pdrf, 123457, 11);  // 2 full chunks + 23,457
+    const std::vector<LasPoint> b = MakePoints(l.pdrf, 100000, 12);  // 2 full chunks, no last one
+    const std::vector<LasPoint> c = MakePoints(l.pdrf, 777, 13);     // no full chunk
+    const std::vector<LasPoint> first = MakePoints(l.pdrf, 500, 14);   // written before, still buffered
+    Write(dir / "a.laz", l.minor, l.pdrf, a, true);
+    Write(dir / "b.laz", l.minor, l.pdrf, b, true);
+    Write(dir / "c.laz", l.minor, l.pdrf, c, true);
+    Write(dir / "a.las", l.minor, l.pdrf, a, false);
+    LasWriterOptions o;
+    o.version_minor = l.minor;
+    o.point_format = l.pdrf;
+    o.compressed = true;
+    o.offset = Eigen::Vector3d(391000, 5706000, 0);
+    {
+      LasWriter w((dir / "merged.laz").string(), o);
+      w.WritePoints(first.data(), first.size());
+      // Refused, nothing written: a LAS file, another offset, another point format.
+      LasReader as_las((dir / "a.las").string());
+      EXPECT_FALSE(w.AppendLaz(as_las));
+      LasWriterOptions shifted = o;
+      shifted.offset = Eigen::Vector3d(391000, 5706000, 100);
+      {
+        LasWriter other((dir / "shifted.laz").string(), shifted);
+        other.WritePoints(c.data(), c.size());
+        other.Close();
+      }
+      LasReader shifted_reader((dir / "shifted.laz").string());
+      EXPECT_FALSE(w.AppendLaz(shifted_reader));
+      Write(dir / "other_format.laz", 4, l.pdrf == 7 ? 6 : 1, MakePoints(l.pdrf == 7 ? 6 : 1, 50, 1), true);
+      LasReader other_format((dir / "other_format.laz").string());
+      EXPECT_FALSE(w.AppendLaz(other_format));
+      EXPECT_EQ(w.num_points(), first.size());
+      for (const char* name : {"a.laz", "b.laz", "c.laz"}) {
+        LasReader reader((dir / name).string());
+        std::vector<LasPoint> some;
+        reader.Read(&some, 10);  // AppendLaz rewinds
+        EXPECT_TRUE(w.AppendLaz(reader)) << name;
+      }
+      w.Close();
+    }
+    // Copied: a's and b's full chunks; then the buffered points: first, a's last 23,457, c.
+    std::vector<LasPoint> expected(a.begin(), a.begin() + 100000);
+    expected.insert(expected.end(), b.begin(), b.end());
+    expected.insert(expected.end(), first.begin(), first.end());
+    expected.insert(expected.end(), a.begin() + 100000, a.end());
+    expected.insert(expected.end(), c.begin(), c.end());
+    Write(dir / "expected.las", l.minor, l.pdrf, expected, false);
+    LasHeader got_header, twin_header;
+    const std::vector<LasPoint> got = ReadAllLasPoints((dir / "merged.laz").string(), &got_header);
+    ExpectSamePoints(got, ReadAllLasPoints((dir / "expected.las").string(), &twin_header));
+    EXPECT_EQ(got_header.point_count, expected.size());
+    EXPECT_EQ(got_header.points_by_return, twin_header.points_by_return);
+    EXPECT_EQ(got_header.min, twin_header.min);
+    EXPECT_EQ(got_header.max, twin_header.max);
+    const std::vector<uint8_t> bytes = ReadBytes(dir / "merged.laz");
+    const uint64_t table = lf::GetU64(&bytes[lf::GetU32(&bytes[lf::kOffPointOffset])]);
+    EXPECT_EQ(lf::GetU32(&bytes[table + 4]), 5u);  // 4 copied, 1 coded
+    // LAS output: every file is refused (the merge then decodes it).
+    LasWriterOptions las = o;
+    las.compressed = false;
+    LasWriter w((dir / "merged.las").string(), las);
+    LasReader reader((dir / "a.laz").string());
+    EXPECT_FALSE(w.AppendLaz(reader));
+  }
+}
+
 TEST(LazWriterTest, NoFileWithoutCloseAndReaderRewinds) {
   TempDir dir;
   const std::vector<LasPoint> pts = MakePoints(3, 70000, 2);

@@ -41,6 +41,7 @@ FusedViews FuseViews(const FusionMethod& method, const ViewSource& source, const
   out.stats = method.Fuse(loaded->views, scope, filter_here ? static_cast<PointSink&>(owned) : written);
   CountInput(loaded->views, scope.owns, &out.stats);
   out.points_written = written.count();
+  out.points_per_view = written.per_view();
   out.points_not_owned = needs.owns_pixels ? out.stats.counter("pixels_not_owned") : owned.rejected();
   return out;
 }

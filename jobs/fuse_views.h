@@ -18,6 +18,7 @@ struct FusedViews {
   FusionStats stats;
   std::vector<uint32_t> view_ids;      // the block's index of each loaded view
   uint64_t points_written = 0;         // to the sink
+  std::vector<uint64_t> points_per_view;  // written to the sink, by the block's view index (FusedPoint::view_index)
   uint64_t points_not_owned = 0;       // left to other tiles (SAC: valid pixels; others: emitted points)
   size_t superpixels_computed = 0;     // while loading (whole-block runs)
   double load_seconds = 0.0;

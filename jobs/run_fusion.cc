@@ -25,7 +25,6 @@
 #include "jobs/las_options.h"
 #include "jobs/method_geometry.h"
 #include "jobs/open_input.h"
-#include "jobs/point_sinks.h"
 #include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
@@ -189,10 +188,9 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
                  NameOf(config.fusion.method), geometry.gsd_m, z_min, z_max, z_source);
   }
   LasWriter writer(summary->las_path, MakeLasOptions(config));
-  CountingSink counting(writer);
   const std::string cache_dir = SuperpixelCacheDir(config);
   const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress);
-  const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, counting);
+  const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, writer);
   summary->superpixels_computed = fused.superpixels_computed;
   summary->superpixel_seconds = fused.load_seconds;
   spdlog::info("{} views loaded in {:.1f} s{}", views.size(), fused.load_seconds,
@@ -203,7 +201,10 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   SetFusionSummary(fused.stats, summary);
   writer.Close();
   summary->output_points = writer.num_points();
-  for (size_t i = 0; i < views.size(); ++i) summary->views[i].output_points = counting.count(views[i].index);
+  for (size_t i = 0; i < views.size(); ++i) {
+    const uint32_t v = views[i].index;
+    summary->views[i].output_points = v < fused.points_per_view.size() ? fused.points_per_view[v] : 0;
+  }
 }
 
 // Scores fused.las when evaluation.reference is set (DIR/eval.json; the table into summary->eval_text), then

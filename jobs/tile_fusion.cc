@@ -98,6 +98,7 @@ TileFused MethodTileFuser::Fuse(const PlannedTile& tile, PointSink& sink) {
   out.stats = std::move(fused.stats);
   out.view_ids = std::move(fused.view_ids);
   out.points_written = fused.points_written;
+  out.points_per_view = std::move(fused.points_per_view);
   out.points_not_owned = fused.points_not_owned;
   return out;
 }

@@ -104,6 +104,12 @@ TEST_F(MethodsEndToEndTest, EveryMethodWritesAValidScoredLasWithSourceIdsUntiled
       const nlohmann::json report = testing::ReadJsonFile(Out(name) / "run_report.json");
       EXPECT_EQ(report.at("method").get<std::string>(), method);
       EXPECT_EQ(report.at("output_points").get<uint64_t>(), points.size()) << name;
+      // Points per view as the file holds them (tiled: summed from the tiles' done markers by the merge).
+      const nlohmann::json& report_views = report.at("views");
+      ASSERT_EQ(report_views.size(), views) << name;
+      for (size_t i = 0; i < views; ++i) {
+        EXPECT_EQ(report_views[i].at("output_points").get<uint64_t>(), per_source[i + 1]) << name << " view " << i;
+      }
       if (tiled) {
         EXPECT_GT(report.at("tiling").at("tiles_run").get<int>(), 4) << name;
       }

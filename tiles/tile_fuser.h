@@ -17,6 +17,7 @@ struct TileFused {
   FusionStats stats;
   std::vector<uint32_t> view_ids;  // the block's index of each view the tile loaded
   uint64_t points_written = 0;     // to the sink: the points of the tile's core
+  std::vector<uint64_t> points_per_view;  // of points_written, by the block's view index
   uint64_t points_not_owned = 0;   // left to the neighbouring tiles
 };
 

@@ -144,6 +144,7 @@ void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& m) 
                             {"min", m.min},
                             {"max", m.max},
                             {"views", m.views},
+                            {"points_per_view", m.points_per_view},
                             {"seconds", m.seconds},
                             {"peak_rss_mib", m.peak_rss_mib},
                             {"finished_unix_ns", m.finished_unix_ns ? m.finished_unix_ns : now}};
@@ -168,6 +169,9 @@ std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, c
     m.peak_rss_mib = j->at("peak_rss_mib").get<double>();
     m.finished_unix_ns = j->at("finished_unix_ns").get<int64_t>();
     if (j->contains("inputs")) m.inputs = InputsFromJson(j->at("inputs"));
+    if (j->contains("points_per_view")) {
+      m.points_per_view = j->at("points_per_view").get<std::vector<std::pair<uint32_t, uint64_t>>>();
+    }
     if (m.id != id) return std::nullopt;
     return m;
   } catch (const std::exception&) {
@@ -190,6 +194,12 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
       for (size_t i = 0; i < changes.size(); ++i) reason += (i ? "; " : "") + changes[i];
       return TileCheck{false, reason, std::move(changes)};
     }
+  }
+  uint64_t per_view_sum = 0;
+  for (const auto& [view, n] : m->points_per_view) per_view_sum += n;
+  if (per_view_sum != m->points) {
+    return fail("its done marker's points per view add up to " + std::to_string(per_view_sum) + ", not " +
+                std::to_string(m->points) + (m->points_per_view.empty() ? " (written by an older sacfuse)" : ""));
   }
   const std::string las = TileLasPath(tiles_dir, id);
   const std::string name = fs::path(las).filename().string();

@@ -6,7 +6,8 @@
 //   <id>.done.json  written atomically AFTER <id>.laz is renamed into place: count, size, bounds, checksum
 //   <id>.failed.json  why the tile's last attempt threw
 // A tile is done only when its marker parses, names the current result-settings hash, its inputs (below) are the
-// current ones, and its LAS file exists with the recorded size, a readable header with the recorded count, and
+// current ones, its points per view add up to its count (the merge takes them from here, it does not decode the
+// tile), and its LAS file exists with the recorded size, a readable header with the recorded count, and
 // the recorded FNV-1a 64 checksum.
 // The marker records the tile's inputs: its core and halo and, for every view whose window it reads, the window
 // and the view's identity (io/view_identity.h: depth map, image, camera). A tile is recomputed exactly when one
@@ -15,6 +16,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/pixel_window.h"
@@ -48,6 +50,8 @@ struct TileDoneMarker {
   std::string checksum;     // FNV-1a 64 of every byte of <id>.laz, hex ("" when points == 0)
   std::array<double, 3> min = {0, 0, 0}, max = {0, 0, 0};  // header bounds
   uint64_t views = 0;                                      // views the tile used
+  // Points of <id>.laz per source view: (the block's view index, points), views with points only, ascending.
+  std::vector<std::pair<uint32_t, uint64_t>> points_per_view;
   double seconds = 0.0;                                    // wall time of the tile
   double peak_rss_mib = 0.0;                               // process peak RSS when the tile finished
   int64_t finished_unix_ns = 0;                            // wall clock when the marker was written

@@ -32,8 +32,11 @@ class TileMarkerTest : public ::testing::Test {
     TileDoneMarker marker = DescribeTileLas(Dir(), "3_4", true);
     marker.config_hash = "hash-a";
     marker.views = 3;
+    marker.points_per_view = kPointsPerView;
     WriteTileDoneMarker(Dir(), marker);
   }
+  // Of the 100 points above: view index i % 3.
+  const std::vector<std::pair<uint32_t, uint64_t>> kPointsPerView = {{0, 34}, {1, 33}, {2, 33}};
   std::string Dir() const { return dir_.path().string(); }
   std::string Las() const { return TileLasPath(Dir(), "3_4"); }
 
@@ -50,6 +53,21 @@ TEST_F(TileMarkerTest, CompleteTileIsDoneAndMarkerRoundTrips) {
   EXPECT_NEAR(marker->min[0], 1001.0, 1e-9);
   EXPECT_NEAR(marker->max[0], 1010.9, 1e-9);
   EXPECT_GT(marker->finished_unix_ns, 0);
+  EXPECT_EQ(marker->points_per_view, kPointsPerView);
+}
+
+// The merge takes the points per view from the marker: a marker without them (an older sacfuse) or whose
+// counts do not add up to its points is not done.
+TEST_F(TileMarkerTest, PointsPerViewMustAddUpToThePoints) {
+  TileDoneMarker marker = *ReadTileDoneMarker(Dir(), "3_4");
+  for (const auto& per_view : {std::vector<std::pair<uint32_t, uint64_t>>{},
+                               std::vector<std::pair<uint32_t, uint64_t>>{{0, 34}, {1, 33}, {2, 32}}}) {
+    marker.points_per_view = per_view;
+    WriteTileDoneMarker(Dir(), marker);
+    const TileCheck check = VerifyTileDone(Dir(), "3_4", "hash-a");
+    EXPECT_FALSE(check.done);
+    EXPECT_NE(check.reason.find("points per view add up to"), std::string::npos) << check.reason;
+  }
 }
 
 TEST_F(TileMarkerTest, WrongConfigHashIsNotDone) {

@@ -14,11 +14,10 @@ namespace {
 constexpr size_t kMergeChunkPoints = 1 << 16;
 }  // namespace
 
-MergeResult MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
-                         const LasWriterOptions& options, const std::function<void(size_t, size_t)>& progress) {
+uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
+                      const LasWriterOptions& options, const std::function<void(size_t, size_t)>& progress) {
   if (!options.offset) throw Error("MergeTileLas: a shared offset is required");
   const Eigen::Vector3d scale = options.scale_xyz ? *options.scale_xyz : Eigen::Vector3d::Constant(options.scale_m);
-  MergeResult result;
   LasWriter writer(out_path, options);
   std::vector<LasPoint> chunk;
   for (size_t i = 0; i < tile_las_paths.size(); ++i) {
@@ -27,20 +26,14 @@ MergeResult MergeTileLas(const std::vector<std::string>& tile_las_paths, const s
     if (h.scale != scale || h.offset != *options.offset) {
       throw InputError(tile_las_paths[i], "scale/offset differ from the run's shared ones; rerun this tile");
     }
-    while (reader.Read(&chunk, kMergeChunkPoints) > 0) {
-      for (const LasPoint& p : chunk) {
-        if (p.point_source_id == 0) continue;
-        const size_t view = p.point_source_id - 1u;
-        if (view >= result.points_per_view.size()) result.points_per_view.resize(view + 1, 0);
-        ++result.points_per_view[view];
-      }
-      writer.WritePoints(chunk.data(), chunk.size());
+    // LAZ tiles into a LAZ cloud: the chunks are copied. Otherwise (LAS output) every point is decoded.
+    if (!writer.AppendLaz(reader)) {
+      while (reader.Read(&chunk, kMergeChunkPoints) > 0) writer.WritePoints(chunk.data(), chunk.size());
     }
     if (progress) progress(i + 1, tile_las_paths.size());
   }
   writer.Close();
-  result.points = writer.num_points();
-  return result;
+  return writer.num_points();
 }
 
 MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
@@ -48,12 +41,17 @@ MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const L
                           const std::function<void(const std::string&, size_t, size_t)>& progress) {
   const std::string tiles_dir = TilesDir(config);
   std::vector<std::string> merge_order;  // LAS files of the tiles that have points, grid order
+  MergeResult merged;
   for (const std::string& id : TileIdsWithViews(plan)) {
     const auto marker = ReadTileDoneMarker(tiles_dir, id);
     if (!marker) throw Error(TileDonePath(tiles_dir, id) + ": done marker vanished before the merge");
     if (marker->points > 0) merge_order.push_back(TileLasPath(tiles_dir, id));
+    for (const auto& [view, n] : marker->points_per_view) {
+      if (view >= merged.points_per_view.size()) merged.points_per_view.resize(view + 1, 0);
+      merged.points_per_view[view] += n;
+    }
   }
-  const MergeResult merged = MergeTileLas(merge_order, fused_las_path, las, [&](size_t done, size_t n) {
+  merged.points = MergeTileLas(merge_order, fused_las_path, las, [&](size_t done, size_t n) {
     if (progress) progress("merge", done, n);
   });
   spdlog::info("merged {} tile files ({} points) into {}", merge_order.size(), merged.points, fused_las_path);

@@ -1,7 +1,10 @@
 #pragma once
 // The merge step of a tiled run: the tile LAS files, in grid order, streamed chunk by chunk into one LasWriter
 // (never the whole cloud in memory). Every tile must carry exactly the writer's scale and offset, so the
-// stored integers are copied unchanged.
+// stored integers are copied unchanged. Into LAZ the tiles' full LAZ chunks are copied without decoding
+// (LasWriter::AppendLaz): only each tile's last, shorter chunk is decoded and coded again. The cloud holds the
+// tiles' full chunks in grid order, with the tiles' last points coded into chunks of their own as they gather
+// (the same points as a point-by-point merge, deterministic, in another order).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -17,14 +20,15 @@ namespace sacfuse {
 
 struct MergeResult {
   uint64_t points = 0;
-  std::vector<uint64_t> points_per_view;  // by view index (point source ID - 1)
+  std::vector<uint64_t> points_per_view;  // by view index (point source ID - 1), from the tiles' done markers
 };
 
-// Merges `tile_las_paths` (in the order given) into `out_path`. `options.offset` must be set. Throws
-// InputError naming a tile whose scale or offset differs, or that cannot be read; leaves no partial output.
-MergeResult MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
-                         const LasWriterOptions& options,
-                         const std::function<void(size_t done, size_t total)>& progress = {});
+// Merges `tile_las_paths` (in the order given) into `out_path`; returns the points written. `options.offset`
+// must be set. Throws InputError naming a tile whose scale or offset differs, or that cannot be read; leaves no
+// partial output.
+uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
+                      const LasWriterOptions& options,
+                      const std::function<void(size_t done, size_t total)>& progress = {});
 
 // Streams the done tiles' LAS files, grid order, into `fused_las_path`; `las.offset` must be the plan's shared
 // offset (tiles/tile_manifest.h). Throws Error when a tile with views has no done marker.

@@ -31,6 +31,9 @@ TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const Ti
   TileDoneMarker marker = DescribeTileLas(job.tiles_dir, tile.id, has_las);
   marker.config_hash = job.hash;
   marker.views = tile.views.size();
+  for (uint32_t v = 0; v < fused.points_per_view.size(); ++v) {
+    if (fused.points_per_view[v] > 0) marker.points_per_view.emplace_back(v, fused.points_per_view[v]);
+  }
   marker.inputs = inputs;
   marker.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   marker.peak_rss_mib = PeakRssMiB();
