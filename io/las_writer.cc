@@ -356,8 +356,8 @@ void LasWriter::Impl::Discard() {
 bool LasWriter::Impl::AppendLaz(LasReader& reader) {
   const LasHeader& h = reader.header();
   if (!laz || !offset || reader.laszip_vlr() != laz->Vlr().data || h.version_minor != version_minor ||
-      h.point_format != pdrf ||
-      h.point_record_length != record_length || h.scale != scale || h.offset != *offset) {
+      h.point_format != pdrf || h.point_record_length != record_length || h.scale != scale ||
+      h.offset != *offset) {
     return false;
   }
   std::array<int32_t, 3> lo, hi;  // the header's bounds as stored integers
