@@ -4,7 +4,7 @@
 #
 #   tools/bench/ab_time.sh CONFIG REPEATS BINARY...
 #
-# CONFIG is a block-style sacfuse YAML (tools/bench/config_with_output.sh makes its relative paths absolute and
+# CONFIG is a sacfuse YAML (tools/bench/config_with_output.sh makes its relative paths absolute and
 # replaces output.dir): every run writes into a fresh WORK/out (WORK = $AB_TIME_DIR, default a temporary folder), so each starts cold (superpixels
 # recomputed unless the config names fusion.superpixel_cache_dir). For each repeat and each binary it prints one
 # line: wall and CPU seconds of the job (run_report.json), SAC's stage seconds, the process's peak RSS
