@@ -106,14 +106,9 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   double weighted_depth = weight_sum * depth_m;
   CombinedDepth out;
   CheckCombineViewCount(neighbors.size());
-  // Projected into every neighbour first and their samples prefetched, so that the reads' cache misses overlap.
   ViewPoint at_depth[kMaxCombineViews];
-  const size_t num = neighbors.size();
-  for (size_t i = 0; i < num; ++i) {
-    at_depth[i] = ProjectIntoView(views[neighbors[i]], ray.at_depth);
-    PrefetchDepthAround(views[neighbors[i]], at_depth[i]);
-  }
-  for (size_t i = 0; i < num; ++i) {
+  ProjectForSecants(views, neighbors, ray.at_depth, at_depth);
+  for (size_t i = 0; i < neighbors.size(); ++i) {
     const uint32_t nb = neighbors[i];
     RayHit hit;
     if (!IntersectRay(views[nb], at_depth[i], ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;

@@ -102,6 +102,17 @@ bool IntersectRay(const SacView& b, const ViewPoint& at_depth_in_b, const Eigen:
 inline constexpr size_t kMaxCombineViews = 64;
 void CheckCombineViewCount(size_t num_views);
 
+// The ray's first secant sample (SecantPoints::at_depth) projected into each of views[ids[i]], into at[i], and the
+// depth pixels around it prefetched, so that the IntersectRay reads which follow overlap their cache misses
+// (CombineDepth and the noise estimate). `at` holds ids.size() entries, at most kMaxCombineViews.
+inline void ProjectForSecants(const std::vector<SacView>& views, const std::vector<uint32_t>& ids,
+                              const Eigen::Vector3d& at_depth, ViewPoint* at) {
+  for (size_t i = 0; i < ids.size(); ++i) {
+    at[i] = ProjectIntoView(views[ids[i]], at_depth);
+    PrefetchDepthAround(views[ids[i]], at[i]);
+  }
+}
+
 struct CombinedDepth {
   double depth_m = 0.0;   // refined depth along the view's ray (the input depth when nothing agreed)
   int support = 1;        // depth maps that took part, the own one included

@@ -36,7 +36,6 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
   const DepthMap& depth = *view.depth;
   std::vector<std::vector<double>> ratio(others.size()), share(others.size());
   CheckCombineViewCount(others.size());
-  const size_t num_others = others.size();
   ViewPoint at_depth[kMaxCombineViews];
   auto add_sample = [&](int row, int col) {
     const float d = depth.at(row, col);
@@ -45,12 +44,8 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
     const double s_v = DepthNoiseScale(view, d);
     const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, prior_k[v] * s_v, options.slope_step_sigmas);
     const SecantPoints ray = SecantPointsOnRay(view, col + 0.5, row + 0.5, d, step_m);
-    // Projected into every other view first and their samples prefetched (as in CombineDepth).
-    for (size_t i = 0; i < num_others; ++i) {
-      at_depth[i] = ProjectIntoView(views[others[i]], ray.at_depth);
-      PrefetchDepthAround(views[others[i]], at_depth[i]);
-    }
-    for (size_t i = 0; i < num_others; ++i) {
+    ProjectForSecants(views, others, ray.at_depth, at_depth);
+    for (size_t i = 0; i < others.size(); ++i) {
       RayHit hit;
       if (!IntersectRay(views[others[i]], at_depth[i], ray.at_next, d, step_m, options.gate_gsd * gsd,
                         options.min_slope, &hit)) {
