@@ -14,8 +14,8 @@ class CountingSink : public PointSink {
   explicit CountingSink(PointSink& next) : next_(next) {}
   void Write(const FusedPoint* points, size_t count) override;
   uint64_t count() const { return count_; }
-  uint64_t count(uint32_t view_index) const { return view_index < per_view_.size() ? per_view_[view_index] : 0; }
-  // Points per FusedPoint::view_index (the block's view index), as long as the largest index seen.
+  // Points per FusedPoint::view_index (the block's view index), as long as the largest index seen (views beyond
+  // it: none).
   const std::vector<uint64_t>& per_view() const { return per_view_; }
 
  private:
