@@ -36,6 +36,40 @@ bool CoverageAgrees(const std::vector<SacView>& views, uint32_t v, double d, uin
                            DepthSigmaM(views, noise_factor, target, hit.z_m), options.coverage_tolerance_sigmas);
 }
 
+// Whether the view `label` that the pixel's cluster chose (or the view its cluster there chose, up to
+// kMaxCoverageHops hops) emits the pixel's surface: every hop agrees with the point (CoverageAgrees), the chain
+// ends in a cluster that chose its own view, and every pixel of the chain passes its point tests. The verdicts are
+// asked last, once the chain's cheap checks hold: a verdict costs ~45 depth reads, a hop one.
+bool ChoiceCovers(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point, double d,
+                  uint32_t label, const NodeTable& nodes, const std::vector<uint32_t>& chosen_view,
+                  const std::vector<double>& noise_factor, const PointVerdicts& verdicts, const SacOptions& options) {
+  struct Hop {
+    uint32_t view;
+    int row, col;
+  };
+  std::array<Hop, kMaxCoverageHops> hops;
+  int num_hops = 0;
+  uint32_t target = label;
+  bool covered = false;
+  for (int hop = 0; hop < kMaxCoverageHops && target != v; ++hop) {
+    const SacView& tv = views[target];
+    const DepthLookup hit = LookupDepth(tv, point);
+    if (!CoverageAgrees(views, v, d, target, hit, noise_factor, options)) return false;
+    hops[num_hops++] = {target, hit.row, hit.col};
+    const uint32_t next =
+        chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
+    if (next == target) {
+      covered = true;
+      break;
+    }
+    target = next;
+  }
+  for (int i = 0; covered && i < num_hops; ++i) {
+    covered = verdicts.At(hops[i].view, hops[i].row, hops[i].col) == PointVerdict::kPasses;
+  }
+  return covered;
+}
+
 }  // namespace
 
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
@@ -91,46 +125,22 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
 
         // Whether another view emits this surface, before the pixel's own verdict: most pixels are dropped here,
         // and their own tests (core/point_verdicts.h) are then never judged. Emitted: own verdict passes, not
-        // covered, not redundant, whatever the order; only which counter a dropped pixel lands in depends on it.
-        const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
-        if (label != v) {
-          // Follow the choices: the chosen view's cluster there may itself have chosen another view.
-          uint32_t target = label;
-          bool covered = false;
-          struct Hop {
-            uint32_t view;
-            int row, col;
-          };
-          std::array<Hop, kMaxCoverageHops> hops;
-          int num_hops = 0;
-          for (int hop = 0; hop < kMaxCoverageHops && target != v; ++hop) {
-            const SacView& tv = views[target];
-            const DepthLookup hit = LookupDepth(tv, point);
-            if (!CoverageAgrees(views, v, d, target, hit, noise_factor, options)) break;
-            hops[num_hops++] = {target, hit.row, hit.col};
-            const uint32_t next =
-                chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
-            if (next == target) {
-              covered = true;
-              break;
-            }
-            target = next;
-          }
-          // Every pixel of the chain must itself be emitted (not an outlier, not in free space). Asked only for
-          // a chain that covers the pixel otherwise: a verdict costs ~45 depth reads, the chain's checks one each.
-          for (int i = 0; covered && i < num_hops; ++i) {
-            covered = verdicts.At(hops[i].view, hops[i].row, hops[i].col) == PointVerdict::kPasses;
-          }
-          if (covered) {
-            ++stats.collapsed;
-            continue;
-          }
-          ++stats.kept_uncovered;
-        }
+        // redundant, not covered, whatever the order; only which counter a dropped pixel lands in depends on it.
+        // The better view is asked first: the pixel it drops a pixel for is the most precise one there, which is
+        // usually emitted and so judged anyway, where the chain's target is often itself redundant and would be
+        // judged for nothing.
         if (best_view && BetterViewEmits(views, v, point, d, redundancy_judges, noise_factor, nodes, chosen_view,
                                          verdicts, options)) {
           ++stats.redundant;
           continue;
+        }
+        const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
+        if (label != v) {
+          if (ChoiceCovers(views, v, point, d, label, nodes, chosen_view, noise_factor, verdicts, options)) {
+            ++stats.collapsed;
+            continue;
+          }
+          ++stats.kept_uncovered;
         }
         const PointVerdict verdict = verdicts.At(v, row, col);
         if (verdict == PointVerdict::kOutlier) {

@@ -24,9 +24,10 @@ namespace sacfuse {
 
 struct CollapseStats {
   uint64_t input_pixels = 0;      // valid depth pixels (that the owner accepts)
+  // A pixel dropped for another view is counted once, in the first test that drops it, in this order:
+  uint64_t redundant = 0;         // dropped: a more precise view holds the same surface (collapse: best_view)
   uint64_t collapsed = 0;         // dropped: covered by the view their cluster chose
   uint64_t kept_uncovered = 0;    // their cluster chose another view, which does not emit them: not collapsed
-  uint64_t redundant = 0;         // dropped: a more precise view holds the same surface (collapse: best_view)
   // Of the pixels neither collapsed nor redundant (their own tests are judged last, core/point_verdicts.h):
   uint64_t free_space = 0;        // dropped: views observed its place as empty
   uint64_t outliers = 0;          // dropped: too few consistent views
