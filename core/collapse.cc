@@ -91,6 +91,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   combine_options.weights = options.combine_weights == "equal"   ? CombineWeights::kEqual
                            : options.combine_weights == "noise" ? CombineWeights::kNoise
                                                                 : CombineWeights::kView;
+  combine_options.surface = options.combine_surface == "secant" ? CombineSurface::kSecant : CombineSurface::kPlane;
   const bool best_view = options.collapse == "best_view";
   // Per patch of the batch: its points in row order and the row of each.
   struct PatchOutput {
@@ -134,7 +135,8 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           ++stats.redundant;
           continue;
         }
-        const uint32_t label = chosen_view[nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)))];
+        const uint32_t node_id = nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)));
+        const uint32_t label = chosen_view[node_id];
         if (label != v) {
           if (ChoiceCovers(views, v, point, d, label, nodes, chosen_view, noise_factor, verdicts, options)) {
             ++stats.collapsed;
@@ -154,8 +156,9 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         FusedPoint p;
         p.point_in_world = point;
         if (combine) {
+          const Eigen::Vector3d plane_normal = nodes.nodes[node_id].normal_in_world.cast<double>();
           const CombinedDepth refined = CombineDepth(views, v, col + 0.5, row + 0.5, d, combine_views[v], noise_factor,
-                                                          combine_options);
+                                                     combine_options, plane_normal);
           p.point_in_world = PixelPoint(view, row, col, refined.depth_m);
         }
         p.rgb = PixelColour(view, row, col);

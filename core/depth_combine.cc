@@ -75,9 +75,33 @@ bool IntersectRay(const SacView& b, const ViewPoint& at_depth_in_b, const Eigen:
   return true;
 }
 
+PixelRay PixelRayOf(const SacView& view, double u, double v_px) {
+  return {view.world_from_cam.translation, view.world_from_cam.rotation * view.depth_camera.Unproject(u, v_px, 1.0)};
+}
+
+bool IntersectPlane(const SacView& b, const ViewPoint& at_depth_in_b, const PixelRay& ray,
+                    const Eigen::Vector3d& normal_in_world, double depth_m, double max_offset_m, RayHit* hit) {
+  const double spread_m = 2.0 * max_offset_m;
+  double f0 = 0, z0 = 0;
+  if (!SurfaceOffset(b, at_depth_in_b, spread_m, &f0, &z0)) return false;
+  if (std::abs(f0) > spread_m) return false;  // another surface (occluder, occluded, blunder)
+  // b's surface point: its ray through the projection, at the stored depth z0 + f0.
+  const Eigen::Vector3d ray_b = b.world_from_cam.rotation * b.depth_camera.Unproject(at_depth_in_b.uv.x(),
+                                                                                       at_depth_in_b.uv.y(), 1.0);
+  const Eigen::Vector3d surface_b = b.world_from_cam.translation + ray_b * (z0 + f0);
+  const double n_dot_ray = normal_in_world.dot(ray.direction_in_world);
+  const double t = normal_in_world.dot(surface_b - ray.centre_in_world) / n_dot_ray;
+  if (std::abs(t - depth_m) > max_offset_m) return false;
+  const double n_dot_ray_b = normal_in_world.dot(ray_b);
+  hit->depth_m = t;
+  hit->slope = n_dot_ray_b != 0.0 ? -n_dot_ray / n_dot_ray_b : -1.0;
+  hit->z_b_m = z0;
+  return true;
+}
+
 CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double u, double v_px, double depth_m,
                            const std::vector<uint32_t>& neighbors, const std::vector<double>& noise_factor,
-                           const DepthCombineOptions& options) {
+                           const DepthCombineOptions& options, const Eigen::Vector3d& plane_normal_in_world) {
   const SacView& view = views[v];
   const double gsd = view.GsdAt(depth_m);
   auto factor = [&](uint32_t i) { return noise_factor.empty() ? 1.0 : noise_factor[i]; };
@@ -87,6 +111,13 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   // The gate: gate_gsd local GSDs, widened to gate_sigmas sigma of the own depth when the noise is larger.
   const double gate_m = std::max(options.gate_gsd * gsd, noise_factor.empty() ? 0.0 : options.gate_sigmas * own_sigma);
   const SecantPoints ray = SecantPointsOnRay(view, u, v_px, depth_m, step_m);
+  // The plane of the pixel's superpixel, where it has one that the ray does not graze.
+  const PixelRay pixel_ray = PixelRayOf(view, u, v_px);
+  const Eigen::Vector3d ray_unit = pixel_ray.direction_in_world.normalized();
+  const bool use_plane = options.surface == CombineSurface::kPlane && plane_normal_in_world.squaredNorm() > 0.0 &&
+                         std::abs(plane_normal_in_world.normalized().dot(ray_unit)) >= kPlaneMinCos;
+  // ... for the views that see the point within kPlaneMaxPairAngleDeg of the ray.
+  const double min_pair_cos = std::cos(kPlaneMaxPairAngleDeg * M_PI / 180.0);
 
   // The weight of depth map i whose z-depth at the point is z_m and whose intersection with the ray has slope
   // `slope` (1 for the own depth): options.weights. The noise model is evaluated only when it is the rule.
@@ -111,7 +142,13 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   for (size_t i = 0; i < neighbors.size(); ++i) {
     const uint32_t nb = neighbors[i];
     RayHit hit;
-    if (!IntersectRay(views[nb], at_depth[i], ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit)) continue;
+    const bool along_plane =
+        use_plane && (ray.at_depth - views[nb].world_from_cam.translation).normalized().dot(ray_unit) >= min_pair_cos;
+    const bool found =
+        along_plane
+            ? IntersectPlane(views[nb], at_depth[i], pixel_ray, plane_normal_in_world, depth_m, gate_m, &hit)
+            : IntersectRay(views[nb], at_depth[i], ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit);
+    if (!found) continue;
     const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
     weight_sum += w;
     weighted_depth += w * hit.depth_m;

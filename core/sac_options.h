@@ -80,6 +80,10 @@ struct SacOptions {
   // factor estimated from the data, so an inconsistent depth map counts less), "equal", or "noise" (the full
   // stereo model: 1 / (k_v z^2 / f)^2 times the ray intersection's slope squared).
   std::string combine_weights = "view";
+  // average: where a neighbour's surface meets the ray (core/depth_combine.h): "plane" (along the plane fitted to
+  // the pixel's superpixel, for neighbours within 30 deg of the ray where the ray does not graze the plane; else
+  // the secant) or "secant" (one secant step on the neighbour's depth map, its slope from two samples).
+  std::string combine_surface = "plane";
   int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
   // --- Superpixels (nodes).
