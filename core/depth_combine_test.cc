@@ -172,6 +172,7 @@ TEST(ViewNoiseTest, RecoversTheRatioOfDepthNoiseBetweenViews) {
   const std::vector<std::vector<uint32_t>> others = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
   ViewNoiseOptions options;
   options.sample_step_px = 2;
+  options.max_samples_per_view = 0;  // the whole step-2 grid (the cap is tested below)
   const std::vector<double> k = EstimateViewNoiseFactors(s.views, others, options);
   ASSERT_EQ(k.size(), 4u);
   EXPECT_NEAR(k[1] / k[0], 1.0, 0.15);
@@ -311,6 +312,7 @@ TEST(ViewNoiseTest, SecondPassWithTheCombinesSlopeStep) {
   }
   ViewNoiseOptions options;
   options.sample_step_px = 4;
+  options.max_samples_per_view = 0;  // the whole step-4 grid (the default cap would widen it on 400 x 200 views)
   options.slope_step_sigmas = 0.0;
   const std::vector<double> one_pass = EstimateViewNoiseFactors(s.views, others, options);
   options.slope_step_sigmas = 2.0;

@@ -33,9 +33,12 @@ namespace sacfuse {
 struct ViewNoiseOptions {
   int sample_step_px = 8;     // sample grid spacing, depth-map pixels ...
   // ... widened so that a view has at most about this many samples: the estimate's cost stays bounded on large
-  // views and tile windows (issue 13: at step 8 it was 30 % of a Dortmund tile's time). An 800 x 600 view keeps
-  // step 8; a 1.3 Mpx tile window gets step 13, a 50 Mpx view step 79.
-  int max_samples_per_view = 8192;  // <= 0: no cap
+  // views and tile windows (issue 13: at step 8 it was 30 % of a Dortmund tile's time). Views and windows up to
+  // 2048 x 8^2 = 131,072 pixels keep step 8; an 800 x 600 view gets step 16, a 1.3 Mpx tile window 26, a 50 Mpx
+  // view 157. 2,048 rather than 8,192 (2026-11-26, twelfth session): aerial-bench Montpellier's noise stage 0.75 ->
+  // 0.21 s, wall 0.90x; F1 at 2x GSD within -0.0006..+0.0003 on the six aerial-bench blocks and -0.01..+0.31 points
+  // on our six (README "Where SAC's time goes").
+  int max_samples_per_view = 2048;  // <= 0: no cap
   int min_samples = 50;       // residuals a view pair needs to count
   double gate_gsd = 12.0;     // residuals within this many local GSDs count. Not fusion.combine_gate_gsd (4): a gate
                               // that narrow truncates the residuals and halved the estimated noise on blocks with
