@@ -282,9 +282,9 @@ TEST(CombineDepthTest, ThePlaneKeepsTheAveragedDepthFromFollowingTheOwnError) {
   errors(CombineSurface::kSecant, &secant_mean, &secant_rms);
   errors(CombineSurface::kPlane, &plane_mean, &plane_rms);
   // The own depth alone would give 1 m; six unbiased neighbours with the own depth, 1/7 m (the 1.5 m gate still
-  // drops the hits beyond it). Views 2 and 3 (50 m off, ~27 deg) see the point within 30 deg of the ray and
-  // are carried along the plane; views 1 and 4-6 (75-100 m off, 37-45 deg) keep the secant. Measured (seed 11): mean error 0.367 m with the plane, 0.492 m by the
-  // secant alone; rms 0.400 against 0.535 m.
+  // drops the hits beyond it). Views 2 and 3 (50 m off, ~27 deg) see the point within 30 deg of the ray and are
+  // carried along the plane; views 1 and 4-6 (75-100 m off, 37-45 deg) keep the secant. Measured (seed 11): mean
+  // error 0.367 m with the plane, 0.492 m by the secant alone; rms 0.400 against 0.535 m.
   EXPECT_LT(plane_rms, 0.8 * secant_rms) << plane_rms << " " << secant_rms;
   EXPECT_LT(std::abs(plane_mean), 0.8 * std::abs(secant_mean)) << plane_mean << " " << secant_mean;
   // A plane the ray grazes (normal across the ray) is not used: the secant's result.
