@@ -138,6 +138,8 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "average: view (1/k^2 of the estimated per-view noise) | equal | noise (k z^2/f and slope)");
   s.AddString("fusion.combine_surface", &f.combine_surface, Affects("-", Choices({"plane", "secant"}), kSac),
               "average: neighbour surface on the ray along the superpixel's plane (views within 30 deg) | by a secant");
+  s.AddInt("fusion.combine_passes", &f.combine_passes, Affects("passes", Closed(1, 4), kSac),
+           "average: passes of the mean, each from the previous mean");
   s.AddInt("fusion.combine_max_views", &f.combine_max_views, Affects("views", Closed(1, 64), kSac),
            "average: views consulted per view");
   s.AddDouble("fusion.combine_max_view_angle_deg", &f.combine_max_view_angle_deg, Affects("deg", Closed(0, 180), kSac),

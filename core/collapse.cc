@@ -92,6 +92,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                            : options.combine_weights == "noise" ? CombineWeights::kNoise
                                                                 : CombineWeights::kView;
   combine_options.surface = options.combine_surface == "secant" ? CombineSurface::kSecant : CombineSurface::kPlane;
+  combine_options.passes = options.combine_passes;
   const bool best_view = options.collapse == "best_view";
   // Per patch of the batch: its points in row order and the row of each.
   struct PatchOutput {

@@ -133,28 +133,37 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
     const double sigma_m = factor(i) * DepthNoiseScale(views[i], z_m) / slope;
     return 1.0 / (sigma_m * sigma_m);
   };
-  double weight_sum = weight(v, depth_m, 1.0);
-  double weighted_depth = weight_sum * depth_m;
-  CombinedDepth out;
   CheckCombineViewCount(neighbors.size());
-  ViewPoint at_depth[kMaxCombineViews];
-  ProjectForSecants(views, neighbors, ray.at_depth, at_depth);
-  for (size_t i = 0; i < neighbors.size(); ++i) {
-    const uint32_t nb = neighbors[i];
-    RayHit hit;
-    const bool along_plane =
-        use_plane && (ray.at_depth - views[nb].world_from_cam.translation).normalized().dot(ray_unit) >= min_pair_cos;
-    const bool found =
-        along_plane
-            ? IntersectPlane(views[nb], at_depth[i], pixel_ray, plane_normal_in_world, depth_m, gate_m, &hit)
-            : IntersectRay(views[nb], at_depth[i], ray.at_next, depth_m, step_m, gate_m, options.min_slope, &hit);
-    if (!found) continue;
-    const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
-    weight_sum += w;
-    weighted_depth += w * hit.depth_m;
-    ++out.support;
-  }
-  out.depth_m = weighted_depth / weight_sum;
+  // One pass: every neighbour's surface on the ray, found from the ray's point at depth `centre_m` (the own depth,
+  // then the previous pass's mean), within the gate of both that point and the own depth; their weighted mean
+  // with the own depth.
+  auto pass = [&](double centre_m) {
+    const SecantPoints at = centre_m == depth_m ? ray : SecantPointsOnRay(view, u, v_px, centre_m, step_m);
+    double weight_sum = weight(v, depth_m, 1.0);
+    double weighted_depth = weight_sum * depth_m;
+    CombinedDepth result;
+    ViewPoint at_centre[kMaxCombineViews];
+    ProjectForSecants(views, neighbors, at.at_depth, at_centre);
+    for (size_t i = 0; i < neighbors.size(); ++i) {
+      const uint32_t nb = neighbors[i];
+      RayHit hit;
+      const bool along_plane =
+          use_plane && (at.at_depth - views[nb].world_from_cam.translation).normalized().dot(ray_unit) >= min_pair_cos;
+      const bool found =
+          along_plane
+              ? IntersectPlane(views[nb], at_centre[i], pixel_ray, plane_normal_in_world, centre_m, gate_m, &hit)
+              : IntersectRay(views[nb], at_centre[i], at.at_next, centre_m, step_m, gate_m, options.min_slope, &hit);
+      if (!found || std::abs(hit.depth_m - depth_m) > gate_m) continue;
+      const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
+      weight_sum += w;
+      weighted_depth += w * hit.depth_m;
+      ++result.support;
+    }
+    result.depth_m = weighted_depth / weight_sum;
+    return result;
+  };
+  CombinedDepth out = pass(depth_m);
+  for (int p = 1; p < options.passes && out.support > 1; ++p) out = pass(out.depth_m);
   return out;
 }
 

@@ -53,6 +53,14 @@
 //    share at x2.5 (St Barth 3.64 -> 3.93 %; within 30 deg 3.66 %). Pairs within 20 / 40 / 55 deg: our city x2.5
 //    53.09 / 53.02 / 52.35, St Barth x2.5 0.8749 / 0.8759 / 0.8763. Elsewhere (no plane, grazing, wide pairs) the
 //    secant.
+//  * Two passes (`passes`, `fusion.combine_passes: 2`, the default since 2026-11-26): the second finds every
+//    neighbour's surface again from the ray's point at the first mean, which lies nearer the surface than the own
+//    depth, so the plane carries the neighbour's point less far and the secant extrapolates less; hits must lie
+//    within the gate of both that point and the own depth. One pass -> two, F1 at 2x GSD: aerial-bench
+//    Montpellier 0.9747 -> 0.9747, x2.5 0.9463 -> 0.9500, Zurich 0.9650 -> 0.9647, x2.5 0.9239 -> 0.9275, St Barth
+//    0.9415 -> 0.9413, x2.5 0.8756 -> 0.8823; our bench (%) city 84.63 -> 85.11, x2.5 53.41 -> 53.94, zurich 96.93
+//    -> 97.00, x2.5 77.13 -> 77.80, montpellier 95.98 -> 96.19, x2.5 70.92 -> 72.21; free space lower on all six
+//    aerial-bench blocks. It costs a second read of every neighbour: aerial-bench Montpellier 1.22x the wall time.
 //  * Robustness: only neighbours whose t_b lies within the gate of d take part (the others see another surface,
 //    an occluder or a blunder): `gate_gsd` local GSDs, widened to `gate_sigmas` sigma of v's own depth (k_v d gsd_v(d)) where
 //    the estimated noise is larger. Grazing intersections (|f'| < 0.2) are skipped.
@@ -103,6 +111,9 @@ struct DepthCombineOptions {
   double slope_step_sigmas = kCombineSlopeStepSigmas;
   CombineWeights weights = CombineWeights::kView;
   CombineSurface surface = CombineSurface::kPlane;
+  // Passes: the second and later find the neighbours' surfaces again from the previous pass's mean, within the
+  // gate of it and of the own depth (see the header).
+  int passes = 2;
 };
 
 // Depth of `depth` at image coordinates (u, v) (corner convention), bilinear over the 2x2 pixel centres around

@@ -37,6 +37,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("SacOptions.combine_slope_step_sigmas", o.combine_slope_step_sigmas, 0.0);
   c.OneOf("SacOptions.combine_weights", o.combine_weights, {"view", "equal", "noise"});
   c.OneOf("SacOptions.combine_surface", o.combine_surface, {"plane", "secant"});
+  c.InRange("SacOptions.combine_passes", o.combine_passes, 1, 4);
   c.InRange("SacOptions.combine_max_views", o.combine_max_views, 1, 64);
   c.InRange("SacOptions.combine_max_view_angle_deg", o.combine_max_view_angle_deg, 0.0, 180.0);
   c.ThrowIfFailed("SAC options");

@@ -84,6 +84,9 @@ struct SacOptions {
   // the pixel's superpixel, for neighbours within 30 deg of the ray where the ray does not graze the plane; else
   // the secant) or "secant" (one secant step on the neighbour's depth map, its slope from two samples).
   std::string combine_surface = "plane";
+  // average: passes of the mean; each after the first finds the neighbours' surfaces again from the previous mean
+  // (closer to the surface than the own depth, so the plane and the secant extrapolate less).
+  int combine_passes = 2;
   int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
   // --- Superpixels (nodes).
