@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -48,21 +49,35 @@ TEST(SampleDepthTest, BilinearBetweenValidCentresNearestOtherwise) {
   EXPECT_FALSE(SampleDepth(d, -0.1, 1.0, 100.0, &z));
 }
 
-TEST(IntersectRayTest, FindsWhereAnotherDepthMapPutsATiltedSurfaceOnTheRay) {
-  // View b sees the plane z = ground + 0.3 (x - x0); its depth map is 0.5 m too long (surface 0.5 m too low).
-  // On a's ray, b's surface is where a would see the plane lowered by 0.5 m.
-  const double x0 = kEast;
-  const View a = NadirView(0, kEast, kNorth, kNadirHeightM);
-  const View b = NadirView(1, kEast + kWholePixelShiftM, kNorth, kNadirHeightM);
+// Two nadir views of the plane z = ground + kTiltSlope (x - kEast): a (index 0) with its exact depth map, b (index
+// 1, one pixel's shift east) with its exact depth map changed by `perturb_b`; and three pixels of a to test at.
+constexpr double kTiltSlope = 0.3;
+constexpr std::pair<int, int> kTiltedTestPixels[] = {{45, 80}, {20, 100}, {70, 60}};
+struct TiltedPlanePair {
   MethodBlock block;
-  block.Add(a, testing::TiltedPlaneDepth(a, kGroundZ, x0, 0.3));
-  DepthMap b_depth = testing::TiltedPlaneDepth(b, kGroundZ, x0, 0.3);
-  for (float& z : b_depth.data) z += 0.5f;
-  block.Add(b, b_depth);
-  const auto views = block.SacViews();
-  const DepthMap lowered = testing::TiltedPlaneDepth(a, kGroundZ - 0.5, x0, 0.3);
-  for (const auto& [row, col] : {std::pair{45, 80}, std::pair{20, 100}, std::pair{70, 60}}) {
-    const double d = block.depths[0].at(row, col);
+  std::vector<SacView> views;
+  template <typename Perturb>
+  explicit TiltedPlanePair(Perturb perturb_b) {
+    const View a = NadirView(0, kEast, kNorth, kNadirHeightM);
+    const View b = NadirView(1, kEast + kWholePixelShiftM, kNorth, kNadirHeightM);
+    block.Add(a, testing::TiltedPlaneDepth(a, kGroundZ, kEast, kTiltSlope));
+    DepthMap b_depth = testing::TiltedPlaneDepth(b, kGroundZ, kEast, kTiltSlope);
+    perturb_b(&b_depth);
+    block.Add(b, b_depth);
+    views = block.SacViews();
+  }
+};
+
+TEST(IntersectRayTest, FindsWhereAnotherDepthMapPutsATiltedSurfaceOnTheRay) {
+  // View b's depth map is 0.5 m too long (surface 0.5 m too low). On a's ray, b's surface is where a would see the
+  // plane lowered by 0.5 m.
+  const TiltedPlanePair s([](DepthMap* depth) {
+    for (float& z : depth->data) z += 0.5f;
+  });
+  const auto& views = s.views;
+  const DepthMap lowered = testing::TiltedPlaneDepth(s.block.views[0], kGroundZ - 0.5, kEast, kTiltSlope);
+  for (const auto& [row, col] : kTiltedTestPixels) {
+    const double d = s.block.depths[0].at(row, col);
     const double gsd = views[0].GsdAt(d);
     const Eigen::Vector3d ray = views[0].depth_camera.Unproject(col + 0.5, row + 0.5, 1.0);
     RayHit hit;
@@ -76,23 +91,18 @@ TEST(IntersectRayTest, FindsWhereAnotherDepthMapPutsATiltedSurfaceOnTheRay) {
 }
 
 TEST(IntersectPlaneTest, CarriesTheNeighboursSurfacePointAlongThePlaneOntoTheRay) {
-  // The plane z = ground + 0.3 (x - x0), normal (-0.3, 0, 1). b's depth map is exact except for a checkerboard of
-  // +-0.2 m; a's own depth is 1 m too long. Carried along the exact plane, b's surface point lands on a's ray within
-  // the 0.2 m of b's error (the rays are near-parallel, so the plane hardly scales it), whatever a's own error.
-  const double x0 = kEast;
-  const View a = NadirView(0, kEast, kNorth, kNadirHeightM);
-  const View b = NadirView(1, kEast + kWholePixelShiftM, kNorth, kNadirHeightM);
-  MethodBlock block;
-  block.Add(a, testing::TiltedPlaneDepth(a, kGroundZ, x0, 0.3));
-  DepthMap b_depth = testing::TiltedPlaneDepth(b, kGroundZ, x0, 0.3);
-  for (int r = 0; r < b_depth.height; ++r) {
-    for (int c = 0; c < b_depth.width; ++c) b_depth.at(r, c) += (r + c) % 2 == 0 ? 0.2f : -0.2f;
-  }
-  block.Add(b, b_depth);
-  const auto views = block.SacViews();
-  const Eigen::Vector3d normal(-0.3, 0.0, 1.0);
-  for (const auto& [row, col] : {std::pair{45, 80}, std::pair{20, 100}, std::pair{70, 60}}) {
-    const double truth = block.depths[0].at(row, col);
+  // The plane's normal is (-0.3, 0, 1). b's depth map is exact except for a checkerboard of +-0.2 m; a's own depth
+  // is 1 m too long. Carried along the exact plane, b's surface point lands on a's ray within the 0.2 m of b's
+  // error (the rays are near-parallel, so the plane hardly scales it), whatever a's own error.
+  const TiltedPlanePair s([](DepthMap* depth) {
+    for (int r = 0; r < depth->height; ++r) {
+      for (int c = 0; c < depth->width; ++c) depth->at(r, c) += (r + c) % 2 == 0 ? 0.2f : -0.2f;
+    }
+  });
+  const auto& views = s.views;
+  const Eigen::Vector3d normal(-kTiltSlope, 0.0, 1.0);
+  for (const auto& [row, col] : kTiltedTestPixels) {
+    const double truth = s.block.depths[0].at(row, col);
     const double d = truth + 1.0;
     const PixelRay ray = PixelRayOf(views[0], col + 0.5, row + 0.5);
     const ViewPoint at_depth = ProjectIntoView(views[1], ray.centre_in_world + ray.direction_in_world * d);
