@@ -3,6 +3,8 @@
 #include <string>
 #include <utility>
 
+#include "core/depth_edge.h"
+
 namespace sacfuse {
 namespace {
 
@@ -117,6 +119,12 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
            "free space: drop points that at least this many views see through (0 = off)");
   s.AddDouble("fusion.free_space_sigmas", &f.free_space_sigmas, Affects("sigma", AtLeast(0), kSac),
               "free space: 'sees through' beyond this many sigmas of the estimated noise");
+  s.AddInt("fusion.free_space_window_px", &f.free_space_window_px, Affects("px", Closed(0, 8), kSac),
+           "free space: a view sees through a point only if every depth within this many pixels of it does");
+  s.AddInt("fusion.free_space_edge_band_px", &f.free_space_edge_band_px, Affects("px", Closed(0, kDepthEdgeReachPx), kSac),
+           "free space: points this close to a foreground edge of their own view are judged by the pixel alone");
+  s.AddDouble("fusion.depth_edge_jump_gsd", &f.depth_edge_jump_gsd, Affects("GSD", Above(0), kSac),
+              "free space: a depth jump of more than this many local GSDs is a foreground edge");
   s.AddInt("fusion.min_consistent_views", &f.min_consistent_views, Affects("views", Closed(1, 64), kSac),
            "outliers: min views (own included) agreeing with a point");
   s.AddDouble("fusion.outlier_expected_factor", &f.outlier_expected_factor, Affects("-", AtLeast(0), kSac),

@@ -10,6 +10,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/depth_edge.h"
 #include "core/method_views.h"
 #include "core/sac_tolerance.h"
 
@@ -60,11 +61,25 @@ bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, 
 // index of view b in the neighbour list whose lookups `neighbor_hits` holds, or -1 (those are not looked up again).
 // The other judges are read through `ceilings` first (DepthCeiling): a view whose deepest valid depth around X's
 // projection is not beyond X by more than the margin cannot see through X, and its depth map is not read.
-bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point, double d,
-                 const std::vector<uint32_t>& judges, const std::vector<int>& neighbor_slot,
+// A judge sees through X only where every valid depth within options.free_space_window_px of X's projection does:
+// one pixel of registration error must not turn the pixels next to an edge of that view into free space. Points
+// on a foreground edge of their own view (core/depth_edge.h; within free_space_edge_band_px), where matchers fatten
+// the foreground, are judged by the pixel alone (the see-through views' windows would hold their own fattening).
+bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, int row, int col, const Eigen::Vector3d& point,
+                 double d, const std::vector<uint32_t>& judges, const std::vector<int>& neighbor_slot,
                  const DepthLookup* neighbor_hits, const std::vector<DepthCeiling>& ceilings,
                  const std::vector<double>& noise_factor, const SacOptions& options) {
   const double sigma_own = noise_factor.empty() ? 0.0 : DepthSigmaM(views, noise_factor, v, d);
+  int window_px = -1;  // decided at the first view that sees through the pixel (most points have none)
+  auto window = [&] {
+    if (window_px < 0) {
+      const double jump_m = options.depth_edge_jump_gsd * views[v].GsdAt(d);
+      window_px = OnForegroundEdge(*views[v].depth, row, col, d, jump_m, options.free_space_edge_band_px)
+                      ? 0
+                      : options.free_space_window_px;
+    }
+    return window_px;
+  };
   int count = 0;
   for (const uint32_t b : judges) {
     if (b == v) continue;
@@ -79,8 +94,14 @@ bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, const Eigen::Vec
       if (ceilings[b].At(hit.row, hit.col) - hit.z_m <= margin) continue;
       hit.stored_depth_m = views[b].depth->at(hit.row, hit.col);
     }
-    if (!IsValidDepth(hit.stored_depth_m)) continue;
-    if (hit.stored_depth_m - hit.z_m > margin && ++count >= options.free_space_min_views) return true;
+    if (!IsValidDepth(hit.stored_depth_m) || hit.stored_depth_m - hit.z_m <= margin) continue;
+    const double z_m = hit.z_m;
+    if (options.free_space_window_px > 0 &&
+        AnyDepthInWindow(*views[b].depth, hit.row, hit.col, window(),
+                         [&](float q) { return IsValidDepth(q) && q - z_m <= margin; })) {
+      continue;
+    }
+    if (++count >= options.free_space_min_views) return true;
   }
   return false;
 }
@@ -153,8 +174,8 @@ PointVerdict PointVerdicts::Judge(uint32_t v, int row, int col) const {
     if (hits[k].inside) hits[k].stored_depth_m = views_[near[k]].depth->at(hits[k].row, hits[k].col);
   }
   if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_)) return PointVerdict::kOutlier;
-  if (options_.free_space_min_views > 0 && InFreeSpace(views_, v, point, d, judges_[v], neighbor_slot_[v], hits.data(),
-                                                       ceilings_, noise_factor_, options_)) {
+  if (options_.free_space_min_views > 0 && InFreeSpace(views_, v, row, col, point, d, judges_[v], neighbor_slot_[v],
+                                                       hits.data(), ceilings_, noise_factor_, options_)) {
     return PointVerdict::kFreeSpace;
   }
   return PointVerdict::kPasses;

@@ -84,6 +84,7 @@ TEST_F(PointVerdictsTest, FreeSpaceThroughTheDepthCeilingMatchesEveryPixelRead) 
   SacOptions options;
   options.min_consistent_views = 1;
   options.free_space_min_views = 1;
+  options.free_space_window_px = 0;  // the pit is one pixel: with a window its neighbours would agree
   const std::vector<std::vector<uint32_t>> none(pit_views.size());
   const PointVerdicts through_ceiling(pit_views, none, others, {}, options);
   const PointVerdicts every_read(pit_views, others, others, {}, options);
@@ -93,6 +94,42 @@ TEST_F(PointVerdictsTest, FreeSpaceThroughTheDepthCeilingMatchesEveryPixelRead) 
   for (int r = 0; r < 90; r += 3) {
     for (int c = 0; c < 120; ++c) ASSERT_EQ(through_ceiling.At(0, r, c), every_read.At(0, r, c)) << r << " " << c;
   }
+}
+
+// View 0's pixel (10, 70) lands on view 1's (10, 46) and view 2's (10, 22). Both have a pit 20 m deep that begins
+// exactly there, so a pixel of registration error would put view 0's point on their near side: with a window of one
+// pixel the plane beside it agrees and the point is not free space; without one, or one column further in
+// (10, 75: the whole window is pit) it is. Where view 0 itself has a foreground edge within the band (a pit of its
+// own two columns away), the pixel alone judges.
+TEST_F(PointVerdictsTest, AnEdgeOnePixelAwayInTheJudgesIsNoFreeSpaceUnlessTheOwnViewHasOne) {
+  SyntheticBlock pits = BlockWithFloater();
+  for (int r = 5; r <= 15; ++r) {
+    for (int c = 46; c <= 55; ++c) pits.depths[1].at(r, c) += 20.0f;
+    for (int c = 22; c <= 31; ++c) pits.depths[2].at(r, c) += 20.0f;
+  }
+  SacOptions options;
+  options.min_consistent_views = 1;  // isolate the free-space test
+  options.free_space_min_views = 2;
+  ASSERT_EQ(options.free_space_window_px, 1);  // the defaults
+  ASSERT_EQ(options.free_space_edge_band_px, 2);
+  auto verdict = [&](const SyntheticBlock& block, const SacOptions& o, int row, int col) {
+    const auto block_views = block.SacViews();
+    return PointVerdicts(block_views, others, others, {}, o).At(0, row, col);
+  };
+  EXPECT_EQ(verdict(pits, options, 10, 70), PointVerdict::kPasses);
+  EXPECT_EQ(verdict(pits, options, 10, 75), PointVerdict::kFreeSpace);
+  SacOptions pixel_alone = options;
+  pixel_alone.free_space_window_px = 0;
+  EXPECT_EQ(verdict(pits, pixel_alone, 10, 70), PointVerdict::kFreeSpace);
+
+  SyntheticBlock own_edge = pits;
+  for (int r = 5; r <= 15; ++r) {
+    for (int c = 72; c <= 80; ++c) own_edge.depths[0].at(r, c) += 20.0f;
+  }
+  EXPECT_EQ(verdict(own_edge, options, 10, 70), PointVerdict::kFreeSpace);
+  SacOptions narrow_band = options;
+  narrow_band.free_space_edge_band_px = 1;
+  EXPECT_EQ(verdict(own_edge, narrow_band, 10, 70), PointVerdict::kPasses);
 }
 
 TEST(DepthCeilingTest, DeepestValidDepthPerBlock) {

@@ -1,5 +1,6 @@
 #include "core/sac_options.h"
 
+#include "core/depth_edge.h"
 #include "core/option_check.h"
 
 namespace sacfuse {
@@ -27,6 +28,9 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("SacOptions.redundancy_tolerance_sigmas", o.redundancy_tolerance_sigmas, 0.0);
   c.InRange("SacOptions.free_space_min_views", o.free_space_min_views, 0, 64);
   c.AtLeast("SacOptions.free_space_sigmas", o.free_space_sigmas, 0.0);
+  c.InRange("SacOptions.free_space_window_px", o.free_space_window_px, 0, 8);
+  c.InRange("SacOptions.free_space_edge_band_px", o.free_space_edge_band_px, 0, kDepthEdgeReachPx);
+  c.Greater("SacOptions.depth_edge_jump_gsd", o.depth_edge_jump_gsd, 0.0);
   c.InRange("SacOptions.min_consistent_views", o.min_consistent_views, 1, 64);
   c.AtLeast("SacOptions.correspondence_tolerance_sigmas", o.correspondence_tolerance_sigmas, 0.0);
   c.AtLeast("SacOptions.outlier_expected_factor", o.outlier_expected_factor, 0.0);

@@ -63,6 +63,14 @@ struct SacOptions {
   // views see through it by more than the tolerance and free_space_sigmas sigma of the estimated noise.
   int free_space_min_views = 2;
   double free_space_sigmas = 3.0;
+  // A view sees through a point only where every valid depth within this many pixels of the point's projection
+  // does (0 = the pixel alone): one pixel of registration error then does not make the pixels next to an edge of
+  // that view free space (aerial-bench St Barth: roof edges). Except for points within free_space_edge_band_px
+  // pixels of a foreground edge of their own view (a jump of more than depth_edge_jump_gsd local GSDs, see
+  // core/depth_edge.h), where matchers fatten the foreground: those are judged by the pixel alone.
+  int free_space_window_px = 1;
+  int free_space_edge_band_px = 2;
+  double depth_edge_jump_gsd = 8.0;
   int min_consistent_views = 4;         // a point must agree with this many views (its own included), fewer
                                         // where fewer can observe it (see collapse.h)
   double outlier_expected_factor = 1.5; // with estimated noise: at most 1 + this x the expected agreeing views
