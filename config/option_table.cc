@@ -121,7 +121,8 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "free space: 'sees through' beyond this many sigmas of the estimated noise");
   s.AddInt("fusion.free_space_window_px", &f.free_space_window_px, Affects("px", Closed(0, 8), kSac),
            "free space: a view sees through a point only if every depth within this many pixels of it does");
-  s.AddInt("fusion.free_space_edge_band_px", &f.free_space_edge_band_px, Affects("px", Closed(0, kDepthEdgeReachPx), kSac),
+  s.AddInt("fusion.free_space_edge_band_px", &f.free_space_edge_band_px,
+           Affects("px", Closed(0, kDepthEdgeReachPx), kSac),
            "free space: points this close to a foreground edge of their own view are judged by the pixel alone");
   s.AddDouble("fusion.depth_edge_jump_gsd", &f.depth_edge_jump_gsd, Affects("GSD", Above(0), kSac),
               "free space: a depth jump of more than this many local GSDs is a foreground edge");
@@ -148,6 +149,8 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "average: neighbour surface on the ray along the superpixel's plane (views within 30 deg) | by a secant");
   s.AddInt("fusion.combine_passes", &f.combine_passes, Affects("passes", Closed(1, 4), kSac),
            "average: passes of the mean, each from the previous mean");
+  s.AddDouble("fusion.combine_later_pass_gate", &f.combine_later_pass_gate, Affects("-", Closed(0.05, 1), kSac),
+              "average: later passes' gate around the previous mean, x the gate (1 = all of it)");
   s.AddInt("fusion.combine_max_views", &f.combine_max_views, Affects("views", Closed(1, 64), kSac),
            "average: views consulted per view");
   s.AddDouble("fusion.combine_max_view_angle_deg", &f.combine_max_view_angle_deg, Affects("deg", Closed(0, 180), kSac),

@@ -93,6 +93,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                                                                 : CombineWeights::kView;
   combine_options.surface = options.combine_surface == "secant" ? CombineSurface::kSecant : CombineSurface::kPlane;
   combine_options.passes = options.combine_passes;
+  combine_options.later_pass_gate = options.combine_later_pass_gate;
   const bool best_view = options.collapse == "best_view";
   // Per patch of the batch: its points in row order and the row of each.
   struct PatchOutput {

@@ -135,9 +135,9 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   };
   CheckCombineViewCount(neighbors.size());
   // One pass: every neighbour's surface on the ray, found from the ray's point at depth `centre_m` (the own depth,
-  // then the previous pass's mean), within the gate of both that point and the own depth; their weighted mean
-  // with the own depth.
-  auto pass = [&](double centre_m) {
+  // then the previous pass's mean), within `centre_gate_m` of that point and the gate of the own depth; their
+  // weighted mean with the own depth.
+  auto pass = [&](double centre_m, double centre_gate_m) {
     const SecantPoints at = centre_m == depth_m ? ray : SecantPointsOnRay(view, u, v_px, centre_m, step_m);
     double weight_sum = weight(v, depth_m, 1.0);
     double weighted_depth = weight_sum * depth_m;
@@ -151,8 +151,10 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
           use_plane && (at.at_depth - views[nb].world_from_cam.translation).normalized().dot(ray_unit) >= min_pair_cos;
       const bool found =
           along_plane
-              ? IntersectPlane(views[nb], at_centre[i], pixel_ray, plane_normal_in_world, centre_m, gate_m, &hit)
-              : IntersectRay(views[nb], at_centre[i], at.at_next, centre_m, step_m, gate_m, options.min_slope, &hit);
+              ? IntersectPlane(views[nb], at_centre[i], pixel_ray, plane_normal_in_world, centre_m, centre_gate_m,
+                               &hit)
+              : IntersectRay(views[nb], at_centre[i], at.at_next, centre_m, step_m, centre_gate_m, options.min_slope,
+                             &hit);
       if (!found || std::abs(hit.depth_m - depth_m) > gate_m) continue;
       const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
       weight_sum += w;
@@ -162,8 +164,8 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
     result.depth_m = weighted_depth / weight_sum;
     return result;
   };
-  CombinedDepth out = pass(depth_m);
-  for (int p = 1; p < options.passes && out.support > 1; ++p) out = pass(out.depth_m);
+  CombinedDepth out = pass(depth_m, gate_m);
+  for (int p = 1; p < options.passes && out.support > 1; ++p) out = pass(out.depth_m, options.later_pass_gate * gate_m);
   return out;
 }
 

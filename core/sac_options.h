@@ -95,6 +95,10 @@ struct SacOptions {
   // average: passes of the mean; each after the first finds the neighbours' surfaces again from the previous mean
   // (closer to the surface than the own depth, so the plane and the secant extrapolate less).
   int combine_passes = 2;
+  // average: the passes after the first take a neighbour's surface within this fraction of the gate around the
+  // previous mean (and within the whole gate of the own depth). 1 (the default) = the whole gate; 0.75 gains on
+  // aerial-bench and loses on our bench (core/depth_combine.h).
+  double combine_later_pass_gate = 1.0;
   int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
   // --- Superpixels (nodes).
