@@ -3,8 +3,7 @@
 // street, a crown over the ground). Stereo matchers spread the foreground a few pixels over the background there
 // (fattening) and invalidate a band behind it (left-right check), so the pixels next to such an edge are the ones
 // whose depth is least to be trusted, and the deeper surface may lie several pixels away beyond a band of holes.
-#include <algorithm>
-
+#include "core/pixel_window.h"
 #include "core/raster.h"
 
 namespace sacfuse {
@@ -13,10 +12,9 @@ namespace sacfuse {
 // `test` (called with the stored float depth, invalid ones included).
 template <typename Test>
 bool AnyDepthInWindow(const DepthMap& depth, int row, int col, int radius, Test test) {
-  const int r0 = std::max(0, row - radius), r1 = std::min(depth.height - 1, row + radius);
-  const int c0 = std::max(0, col - radius), c1 = std::min(depth.width - 1, col + radius);
-  for (int r = r0; r <= r1; ++r) {
-    for (int c = c0; c <= c1; ++c) {
+  const PixelWindow w = SquareAround(row, col, radius, depth.width, depth.height);
+  for (int r = w.row_begin; r < w.row_end; ++r) {
+    for (int c = w.col_begin; c < w.col_end; ++c) {
       if (test(depth.at(r, c))) return true;
     }
   }

@@ -52,6 +52,12 @@ TEST(DepthEdgeTest, HolesWithoutADeeperSurfaceAndTheImageBorderAreNoEdge) {
   EXPECT_FALSE(OnForegroundEdge(depth, 9, 9, 50.0, 5.0, 2));
 }
 
+TEST(DepthEdgeTest, SquareAroundIsClippedToTheRaster) {
+  EXPECT_EQ(SquareAround(5, 6, 2, 20, 10), (PixelWindow{3, 8, 4, 9}));
+  EXPECT_EQ(SquareAround(0, 19, 3, 20, 10), (PixelWindow{0, 4, 16, 20}));
+  EXPECT_EQ(SquareAround(9, 0, 0, 20, 10), (PixelWindow{9, 10, 0, 1}));
+}
+
 TEST(DepthEdgeTest, AnyDepthInWindowIsClippedToTheRaster) {
   DepthMap depth(5, 4, 1, 1.0f);
   depth.at(3, 4) = 2.0f;

@@ -1,6 +1,7 @@
 #include "core/depth_normals.h"
 
 #include "core/backproject.h"
+#include "core/pixel_window.h"
 #include "core/plane_fit.h"
 
 #include <algorithm>
@@ -28,8 +29,9 @@ NormalMap PlaneFitNormalsInWorld(const SacView& view, int radius_px) {
       const Eigen::Vector3d centre = DepthPixelInCamera(cam, col, row, dc);
       const double gsd = view.GsdAt(dc);
       PlaneFit plane;
-      for (int r = std::max(0, row - radius_px); r <= std::min(depth.height - 1, row + radius_px); ++r) {
-        for (int c = std::max(0, col - radius_px); c <= std::min(depth.width - 1, col + radius_px); ++c) {
+      const PixelWindow window = SquareAround(row, col, radius_px, depth.width, depth.height);
+      for (int r = window.row_begin; r < window.row_end; ++r) {
+        for (int c = window.col_begin; c < window.col_end; ++c) {
           const float d = depth.at(r, c);
           if (!IsValidDepth(d)) continue;
           const int steps = std::max(std::abs(r - row), std::abs(c - col)) + 1;

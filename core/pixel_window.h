@@ -1,5 +1,6 @@
 #pragma once
 // A half-open rectangle of a raster's pixels: what a tile reads of a view's depth, superpixel and colour rasters.
+#include <algorithm>
 #include <cstddef>
 #include <string>
 
@@ -21,6 +22,12 @@ struct PixelWindow {
     return row_begin == o.row_begin && row_end == o.row_end && col_begin == o.col_begin && col_end == o.col_end;
   }
 };
+
+// The square of pixels within `radius` (Chebyshev) of (row, col), clipped to a raster of width x height.
+inline PixelWindow SquareAround(int row, int col, int radius, int raster_width, int raster_height) {
+  return {std::max(0, row - radius), std::min(raster_height, row + radius + 1), std::max(0, col - radius),
+          std::min(raster_width, col + radius + 1)};
+}
 
 // "rows [a, b) x cols [c, d)" for messages.
 inline std::string PixelWindowText(const PixelWindow& w) {
