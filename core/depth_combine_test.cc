@@ -242,7 +242,6 @@ TEST(CombineDepthTest, SlopeOverTheNoiseNotOneGsdKeepsNoisyNeighboursFromScatter
     DepthCombineOptions options;
     options.gate_gsd = 4.0;
     options.slope_step_sigmas = slope_step_sigmas;
-    options.passes = 1;  // the slope step alone (later passes re-centre the gate: LaterPasses... below)
     double sum = 0;
     int n = 0;
     for (int row = 60; row < 140; row += 4) {
