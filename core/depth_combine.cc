@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 
@@ -25,10 +26,27 @@ bool SampleDepth(const DepthMap& depth, double u, double v, double max_spread_m,
       }
     }
   }
-  const float nearest = depth.at(static_cast<int>(v), static_cast<int>(u));
-  if (!IsValidDepth(nearest)) return false;
-  *depth_m = nearest;
-  return true;
+  // Else the pixel holding (u, v), or where it is invalid the nearest valid one of those centres: a surface one
+  // pixel away is still the view's surface there, where a lone invalid pixel would drop the view.
+  const float holding = depth.at(static_cast<int>(v), static_cast<int>(u));
+  if (IsValidDepth(holding)) {
+    *depth_m = holding;
+    return true;
+  }
+  bool found = false;
+  double nearest_sq = 0.0;
+  for (int r = std::max(0, r0); r <= std::min(depth.height - 1, r0 + 1); ++r) {
+    for (int c = std::max(0, c0); c <= std::min(depth.width - 1, c0 + 1); ++c) {
+      const float d = depth.at(r, c);
+      if (!IsValidDepth(d)) continue;
+      const double dist_sq = (c + 0.5 - u) * (c + 0.5 - u) + (r + 0.5 - v) * (r + 0.5 - v);
+      if (found && dist_sq >= nearest_sq) continue;
+      found = true;
+      nearest_sq = dist_sq;
+      *depth_m = d;
+    }
+  }
+  return found;
 }
 
 namespace {

@@ -129,8 +129,12 @@ struct DepthCombineOptions {
 };
 
 // Depth of `depth` at image coordinates (u, v) (corner convention), bilinear over the 2x2 pixel centres around
-// it when all four are valid and within `max_spread_m` of each other, else the nearest pixel's; false when that
-// pixel is outside or invalid.
+// it when all four are valid and within `max_spread_m` of each other, else the depth of the nearest valid one of
+// those centres (the pixel holding (u, v) when it is valid); false when (u, v) is outside or none is valid.
+// Measured (2026-11-27), against the pixel holding (u, v) alone: our bench F1 at 2x GSD (%) city 85.07 -> 85.22,
+// x2.5 53.92 -> 54.27, zurich 96.98 -> 97.02, x2.5 77.74 -> 78.03, montpellier 96.15 -> 96.20, x2.5 72.17 ->
+// 72.63 (its depth maps have scattered invalid pixels, and a view whose projection hit one was left out of the
+// mean); aerial-bench within +-0.0001 on all six blocks.
 bool SampleDepth(const DepthMap& depth, double u, double v, double max_spread_m, double* depth_m);
 
 // Where depth map b puts the surface on a ray of another view (the secant step of the header).

@@ -43,7 +43,15 @@ TEST(SampleDepthTest, BilinearBetweenValidCentresNearestOtherwise) {
   d.at(0, 0) = 0.0f;
   ASSERT_TRUE(SampleDepth(d, 1.2, 1.2, 100.0, &z));
   EXPECT_NEAR(z, 16.0, 1e-9);
-  // Nearest invalid or outside: no depth.
+  // The pixel holding (u, v), (1, 1), invalid: the nearest valid centre of the four, (0.5, 1.5) of pixel (1, 0)
+  // (pixel (0, 1) is valid too but its centre is farther from (1.2, 1.4)).
+  d.at(1, 1) = 0.0f;
+  ASSERT_TRUE(SampleDepth(d, 1.2, 1.4, 100.0, &z));
+  EXPECT_NEAR(z, 14.0, 1e-9);
+  // None of the four valid, or outside: no depth.
+  d.at(0, 1) = 0.0f;
+  d.at(1, 0) = 0.0f;
+  EXPECT_FALSE(SampleDepth(d, 1.0, 1.0, 100.0, &z));
   EXPECT_FALSE(SampleDepth(d, 0.4, 0.4, 100.0, &z));
   EXPECT_FALSE(SampleDepth(d, 3.2, 1.0, 100.0, &z));
   EXPECT_FALSE(SampleDepth(d, -0.1, 1.0, 100.0, &z));
