@@ -1,25 +1,31 @@
 #include "jobs/block_view_source.h"
 
+#include <atomic>
 #include <chrono>
+#include <mutex>
 
 #include "core/colour_resample.h"
 #include "core/error.h"
 #include "io/view_identity.h"
 #include "jobs/superpixel_cache.h"
+#include "jobs/view_batches.h"
 
 namespace sacfuse {
 
 BlockViewSource::BlockViewSource(const DepthBlock& input, const SuperpixelOptions& superpixels, std::string cache_dir,
-                                 SacProgress progress)
+                                 SacProgress progress, size_t views_in_flight)
     : input_(input), superpixel_options_(superpixels), cache_dir_(std::move(cache_dir)),
-      progress_(std::move(progress)) {}
+      progress_(std::move(progress)), views_in_flight_(views_in_flight) {}
 
 std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) const {
   const auto start = std::chrono::steady_clock::now();
   const auto& views = input_.views();
   auto out = std::make_unique<LoadedViews>();
   out->Reserve(views.size());
-  for (size_t i = 0; i < views.size(); ++i) {
+  std::atomic<size_t> computed_views{0}, loaded_views{0};
+  std::mutex progress_mutex;
+  // Each view fills only its own slot of the storage; the views are appended in the block's order below.
+  ForEachViewInBatches(views.size(), views_in_flight_, [&](size_t i) {
     const View& view = views[i];
     out->depths[i] = input_.ReadDepthMap(view);
     const DepthMap& depth = out->depths[i];
@@ -29,7 +35,7 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
       out->superpixels[i] =
           LoadOrComputeSuperpixels(cache_dir_, view, image, depth, superpixel_options_, IdentifyView(input_, view),
                                    &computed);
-      out->superpixels_computed += computed ? 1 : 0;
+      if (computed) ++computed_views;
     }
     if (needs.consistency_graphs) {
       if (!input_.HasConsistencyGraph(view)) {
@@ -41,12 +47,18 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
       out->graphs[i] = input_.ReadConsistencyGraph(view);
     }
     out->colours[i] = ResampleColourToDepthGrid(image, depth.width, depth.height);
+    if (progress_) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      progress_(needs.superpixels ? "load + superpixels" : "load", ++loaded_views, views.size());
+    }
+  });
+  for (size_t i = 0; i < views.size(); ++i) {
     PixelWindow whole;
-    whole.row_end = depth.height;
-    whole.col_end = depth.width;
-    out->AddView(static_cast<uint32_t>(i), view, {depth.width, depth.height}, whole, needs, i);
-    if (progress_) progress_(needs.superpixels ? "load + superpixels" : "load", i + 1, views.size());
+    whole.row_end = out->depths[i].height;
+    whole.col_end = out->depths[i].width;
+    out->AddView(static_cast<uint32_t>(i), views[i], {whole.col_end, whole.row_end}, whole, needs, i);
   }
+  out->superpixels_computed = computed_views;
   out->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

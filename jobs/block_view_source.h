@@ -13,8 +13,9 @@ namespace sacfuse {
 class BlockViewSource : public ViewSource {
  public:
   // `superpixels`: the options the superpixels are computed with (and their cache files keyed by).
+  // `views_in_flight`: views read and segmented at once (jobs/view_batches.h; SuperpixelViewsInFlight).
   BlockViewSource(const DepthBlock& input, const SuperpixelOptions& superpixels, std::string cache_dir,
-                  SacProgress progress = {});
+                  SacProgress progress = {}, size_t views_in_flight = 1);
   std::unique_ptr<LoadedViews> Load(const FusionNeeds& needs) const override;
 
  private:
@@ -22,6 +23,7 @@ class BlockViewSource : public ViewSource {
   SuperpixelOptions superpixel_options_;
   std::string cache_dir_;
   SacProgress progress_;
+  size_t views_in_flight_;
 };
 
 }  // namespace sacfuse

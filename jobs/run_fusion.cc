@@ -28,6 +28,7 @@
 #include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
+#include "jobs/view_batches.h"
 #include "tiles/memory_model.h"
 #include "tiles/tile_manifest.h"
 #include "tiles/tile_plan.h"
@@ -189,7 +190,7 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   }
   LasWriter writer(summary->las_path, MakeLasOptions(config));
   const std::string cache_dir = SuperpixelCacheDir(config);
-  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress);
+  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress, ViewsInFlight(config, input));
   const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, writer);
   summary->superpixels_computed = fused.superpixels_computed;
   summary->superpixel_seconds = fused.load_seconds;

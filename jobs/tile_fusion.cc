@@ -1,5 +1,7 @@
 #include "jobs/tile_fusion.h"
 
+#include <atomic>
+#include <mutex>
 #include <vector>
 
 #include "core/colour_resample.h"
@@ -9,6 +11,7 @@
 #include "jobs/method_memory.h"
 #include "jobs/superpixel_cache.h"
 #include "jobs/tile_view_source.h"
+#include "jobs/view_batches.h"
 
 namespace sacfuse {
 namespace {
@@ -39,7 +42,8 @@ bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRast
 
 size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
                               const std::string& superpixel_cache_dir, const std::vector<ViewIdentity>& inputs,
-                              const SacProgress& progress, const PlannedTile* only_tile, bool with_superpixels) {
+                              const SacProgress& progress, const PlannedTile* only_tile, bool with_superpixels,
+                              size_t views_in_flight) {
   const auto& views = input.views();
   std::vector<size_t> todo;
   if (only_tile == nullptr) {
@@ -47,13 +51,19 @@ size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, con
   } else {
     for (const TileViewWindow& tw : only_tile->views) todo.push_back(tw.view);
   }
-  size_t computed = 0;
-  for (size_t i = 0; i < todo.size(); ++i) {
+  std::atomic<size_t> computed{0}, done{0};
+  std::mutex progress_mutex;
+  ForEachViewInBatches(todo.size(), views_in_flight, [&](size_t i) {
     const size_t v = todo[i];
-    computed += EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir,
-                                 with_superpixels, inputs.at(v)) ? 1 : 0;
-    if (progress) progress("superpixels", i + 1, todo.size());
-  }
+    if (EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir,
+                         with_superpixels, inputs.at(v))) {
+      ++computed;
+    }
+    if (progress) {
+      const std::lock_guard<std::mutex> lock(progress_mutex);
+      progress("superpixels", ++done, todo.size());
+    }
+  });
   return computed;
 }
 

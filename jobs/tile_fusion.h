@@ -23,10 +23,12 @@ namespace sacfuse {
 // current one for the view's identity `inputs` (by view index; io/view_identity.h), logging why (nothing is read
 // for the others); returns how many superpixel files were computed.
 // `with_superpixels` false: the colour caches only (methods that do not read superpixels: FusionNeeds).
+// `views_in_flight`: views prepared at once (jobs/view_batches.h; SuperpixelViewsInFlight).
 size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, const SacOptions& options,
                               const std::string& superpixel_cache_dir, const std::vector<ViewIdentity>& inputs,
                               const SacProgress& progress = {},
-                              const PlannedTile* only_tile = nullptr, bool with_superpixels = true);
+                              const PlannedTile* only_tile = nullptr, bool with_superpixels = true,
+                              size_t views_in_flight = 1);
 
 // Runs fusion.method on one tile (which must have views) and writes the points of its core to `sink`. Needs the
 // caches of EnsureTiledSuperpixels; reads only the tile's windows of them and of the depth maps. Cluster tables

@@ -12,6 +12,7 @@
 #include "jobs/fusion_methods.h"
 #include "jobs/las_options.h"
 #include "jobs/tile_fusion.h"
+#include "jobs/view_batches.h"
 #include "tiles/memory_model.h"
 #include "tiles/tile_manifest.h"
 #include "tiles/tile_merge.h"
@@ -29,7 +30,8 @@ void MakeViewCaches(const JobConfig& config, const DepthBlock& input, const Tile
                     const StageProgress& progress, TiledRunOutcome* out) {
   const auto start = std::chrono::steady_clock::now();
   out->superpixels_computed = EnsureTiledSuperpixels(input, plan, config.fusion.sac, SuperpixelCacheDir(config),
-                                                     identities, progress, nullptr, superpixels);
+                                                     identities, progress, nullptr, superpixels,
+                                                     ViewsInFlight(config, input));
   out->superpixel_seconds = SecondsSince(start);
   if (superpixels) {
     spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",

@@ -44,13 +44,26 @@ uint64_t UntiledSacBytes(const BlockPixels& pixels) {
          pixels.total_image_pixels() * kBytesPerImagePixel;
 }
 
-uint64_t SuperpixelPassBytes(const BlockPixels& pixels) {
+namespace {
+
+// The superpixel pass's memory for its largest view.
+uint64_t LargestViewPassBytes(const BlockPixels& pixels) {
   uint64_t peak = 0;
   for (size_t v = 0; v < pixels.depth_pixels.size(); ++v) {
     peak = std::max(peak, pixels.depth_pixels[v] * kSuperpixelPassBytesPerDepthPixel +
                               pixels.image_pixels[v] * kBytesPerImagePixel);
   }
-  return kProcessBaseBytes + peak;
+  return peak;
+}
+
+}  // namespace
+
+uint64_t SuperpixelPassBytes(const BlockPixels& pixels) { return kProcessBaseBytes + LargestViewPassBytes(pixels); }
+
+size_t SuperpixelViewsInFlight(const BlockPixels& pixels, uint64_t budget_bytes, size_t threads) {
+  const uint64_t per_view = std::max<uint64_t>(1, LargestViewPassBytes(pixels));
+  const uint64_t room = budget_bytes > kProcessBaseBytes ? budget_bytes - kProcessBaseBytes : 0;
+  return static_cast<size_t>(std::max<uint64_t>(1, std::min<uint64_t>(threads, room / per_view)));
 }
 
 }  // namespace sacfuse

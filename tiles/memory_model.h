@@ -47,5 +47,8 @@ uint64_t TileBytes(uint64_t window_pixels);
 uint64_t UntiledSacBytes(const BlockPixels& pixels);
 // Peak of the superpixel pass: its largest view.
 uint64_t SuperpixelPassBytes(const BlockPixels& pixels);
+// How many views the superpixel pass (and an untiled run's loading) may hold at once: one per thread (`threads`),
+// as many as the budget holds beside the process (each as large as the largest view), at least one.
+size_t SuperpixelViewsInFlight(const BlockPixels& pixels, uint64_t budget_bytes, size_t threads);
 
 }  // namespace sacfuse
