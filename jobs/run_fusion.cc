@@ -190,7 +190,8 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   }
   LasWriter writer(summary->las_path, MakeLasOptions(config));
   const std::string cache_dir = SuperpixelCacheDir(config);
-  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress, ViewsInFlight(config, input));
+  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress,
+                                     ViewsInFlight(config, input, /*untiled=*/true));
   const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, writer);
   summary->superpixels_computed = fused.superpixels_computed;
   summary->superpixel_seconds = fused.load_seconds;

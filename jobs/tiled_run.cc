@@ -31,7 +31,7 @@ void MakeViewCaches(const JobConfig& config, const DepthBlock& input, const Tile
   const auto start = std::chrono::steady_clock::now();
   out->superpixels_computed = EnsureTiledSuperpixels(input, plan, config.fusion.sac, SuperpixelCacheDir(config),
                                                      identities, progress, nullptr, superpixels,
-                                                     ViewsInFlight(config, input));
+                                                     ViewsInFlight(config, input, /*untiled=*/false));
   out->superpixel_seconds = SecondsSince(start);
   if (superpixels) {
     spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",

@@ -10,10 +10,12 @@
 
 namespace sacfuse {
 
-size_t ViewsInFlight(const JobConfig& config, const DepthBlock& input) {
+size_t ViewsInFlight(const JobConfig& config, const DepthBlock& input, bool untiled) {
   const int threads = tbb::this_task_arena::max_concurrency();
-  return SuperpixelViewsInFlight(MeasureBlockPixels(input), MemoryBudgetBytes(config.resources.memory_gb),
-                                 static_cast<size_t>(std::max(1, threads)));
+  const BlockPixels pixels = MeasureBlockPixels(input);
+  const uint64_t held = untiled ? UntiledSacBytes(pixels) : SuperpixelPassBytes(pixels);
+  return SuperpixelViewsInFlight(pixels, MemoryBudgetBytes(config.resources.memory_gb),
+                                 static_cast<size_t>(std::max(1, threads)), held);
 }
 
 }  // namespace sacfuse

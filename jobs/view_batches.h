@@ -16,9 +16,10 @@ namespace sacfuse {
 class DepthBlock;
 struct JobConfig;
 
-// Views a run prepares at once: one per thread of the run, as many as resources.memory_gb holds
-// (tiles/memory_model.h SuperpixelViewsInFlight).
-size_t ViewsInFlight(const JobConfig& config, const DepthBlock& input);
+// Views a run prepares at once: one per thread of the run, as many as resources.memory_gb holds beside what the
+// run holds meanwhile (tiles/memory_model.h SuperpixelViewsInFlight): the whole block's rasters in an untiled run
+// (`untiled`), nothing but the process in the tiled superpixel pass.
+size_t ViewsInFlight(const JobConfig& config, const DepthBlock& input, bool untiled);
 
 // Calls body(i) for every i in [0, count), at most `in_flight` (>= 1) at once.
 template <typename Body>

@@ -60,10 +60,11 @@ uint64_t LargestViewPassBytes(const BlockPixels& pixels) {
 
 uint64_t SuperpixelPassBytes(const BlockPixels& pixels) { return kProcessBaseBytes + LargestViewPassBytes(pixels); }
 
-size_t SuperpixelViewsInFlight(const BlockPixels& pixels, uint64_t budget_bytes, size_t threads) {
+size_t SuperpixelViewsInFlight(const BlockPixels& pixels, uint64_t budget_bytes, size_t threads, uint64_t held_bytes) {
   const uint64_t per_view = std::max<uint64_t>(1, LargestViewPassBytes(pixels));
-  const uint64_t room = budget_bytes > kProcessBaseBytes ? budget_bytes - kProcessBaseBytes : 0;
-  return static_cast<size_t>(std::max<uint64_t>(1, std::min<uint64_t>(threads, room / per_view)));
+  const uint64_t room = budget_bytes > held_bytes ? budget_bytes - held_bytes : 0;
+  const uint64_t more = std::min<uint64_t>(threads > 0 ? threads - 1 : 0, room / per_view);
+  return static_cast<size_t>(1 + more);
 }
 
 }  // namespace sacfuse

@@ -47,8 +47,10 @@ uint64_t TileBytes(uint64_t window_pixels);
 uint64_t UntiledSacBytes(const BlockPixels& pixels);
 // Peak of the superpixel pass: its largest view.
 uint64_t SuperpixelPassBytes(const BlockPixels& pixels);
-// How many views the superpixel pass (and an untiled run's loading) may hold at once: one per thread (`threads`),
-// as many as the budget holds beside the process (each as large as the largest view), at least one.
-size_t SuperpixelViewsInFlight(const BlockPixels& pixels, uint64_t budget_bytes, size_t threads);
+// How many views the superpixel pass (or an untiled run's loading) may prepare at once: one, and one more per
+// further thread (`threads`) as long as the budget holds it beside `held_bytes`, the run's memory while it
+// prepares one view (SuperpixelPassBytes for the tiled pass, UntiledSacBytes for an untiled run); each further
+// view counts as much as the largest view's preparation.
+size_t SuperpixelViewsInFlight(const BlockPixels& pixels, uint64_t budget_bytes, size_t threads, uint64_t held_bytes);
 
 }  // namespace sacfuse
