@@ -64,6 +64,8 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
     spdlog::warn("the superpixel pass needs ~{:.2f} GiB for the largest view, more than resources.memory_gb = {}",
                  GiB(superpixel_bytes), config.resources.memory_gb);
   }
+  // Tiled: the superpixel pass runs alone before the tiles; untiled: beside the whole block (set below).
+  d.views_in_flight = SuperpixelViewsInFlight(pixels, d.budget_bytes, static_cast<size_t>(threads), superpixel_bytes);
   if (config.tiling.tile_size_m > 0) {
     d.tiled = true;
     d.tile_size_m = config.tiling.tile_size_m;
@@ -72,6 +74,7 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
   }
   d.automatic = true;
   if (d.untiled_bytes <= d.budget_bytes) {
+    d.views_in_flight = SuperpixelViewsInFlight(pixels, d.budget_bytes, static_cast<size_t>(threads), d.untiled_bytes);
     d.reason = "untiled: the whole block needs ~" + fmt::format("{:.2f}", GiB(d.untiled_bytes)) +
                " GiB of the " + fmt::format("{:.2f}", GiB(d.budget_bytes)) + " GiB budget";
     return d;

@@ -19,6 +19,9 @@ struct TilingDecision {
   uint64_t untiled_bytes = 0;    // estimate of untiled SAC
   uint64_t max_tile_bytes = 0;   // estimate of the largest tile (tiled)
   int parallel_tiles = 1;        // tiles that fit in the budget at once (<= threads)
+  // Views the untiled load or the tiled superpixel pass prepares at once (jobs/view_batches.h): one per thread, as
+  // many as the budget holds beside the run's estimate (tiles/memory_model.h SuperpixelViewsInFlight).
+  size_t views_in_flight = 1;
   std::string reason;            // one line for the log
 };
 

@@ -2,7 +2,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <mutex>
 
 #include "core/colour_resample.h"
 #include "core/error.h"
@@ -22,8 +21,7 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
   const auto& views = input_.views();
   auto out = std::make_unique<LoadedViews>();
   out->Reserve(views.size());
-  std::atomic<size_t> computed_views{0}, loaded_views{0};
-  std::mutex progress_mutex;
+  std::atomic<size_t> computed_views{0};
   // Each view fills only its own slot of the storage; the views are appended in the block's order below.
   ForEachViewInBatches(views.size(), views_in_flight_, [&](size_t i) {
     const View& view = views[i];
@@ -47,10 +45,8 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
       out->graphs[i] = input_.ReadConsistencyGraph(view);
     }
     out->colours[i] = ResampleColourToDepthGrid(image, depth.width, depth.height);
-    if (progress_) {
-      const std::lock_guard<std::mutex> lock(progress_mutex);
-      progress_(needs.superpixels ? "load + superpixels" : "load", ++loaded_views, views.size());
-    }
+  }, [&](size_t loaded) {
+    if (progress_) progress_(needs.superpixels ? "load + superpixels" : "load", loaded, views.size());
   });
   for (size_t i = 0; i < views.size(); ++i) {
     PixelWindow whole;

@@ -28,7 +28,6 @@
 #include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
-#include "jobs/view_batches.h"
 #include "tiles/memory_model.h"
 #include "tiles/tile_manifest.h"
 #include "tiles/tile_plan.h"
@@ -142,7 +141,7 @@ void SetFusionSummary(const FusionStats& stats, RunSummary* summary) {
 
 // Tiled (any method): per-tile files, resume, merge (jobs/tiled_run.h).
 void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
-              const std::vector<std::string>& rerun_tiles, RunSummary* summary) {
+              const std::vector<std::string>& rerun_tiles, size_t views_in_flight, RunSummary* summary) {
   const BlockIdentity identity = IdentifyBlock(input);
   spdlog::info("input identities of {} views: {:.2f} MiB read and hashed in {:.3f} s ({:.0f} MiB/s)",
                identity.views.size(), static_cast<double>(identity.bytes_hashed) / (1 << 20), identity.seconds,
@@ -153,7 +152,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
                NameOf(config.fusion.method), plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
   const TiledRunOutcome tiled =
-      RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path, progress);
+      RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path, progress, views_in_flight);
   SetFusionSummary(tiled.stats, summary);
   summary->superpixels_computed = tiled.superpixels_computed;
   summary->superpixel_seconds = tiled.superpixel_seconds;
@@ -174,7 +173,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
 
 // Untiled: the whole block through the same FuseViews as every tile, into one LAS writer.
 void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
-                RunSummary* summary) {
+                size_t views_in_flight, RunSummary* summary) {
   const auto& views = input.views();
   const std::unique_ptr<FusionMethod> method = MakeFusionMethod(config.fusion, progress);
   MethodGeometry geometry;
@@ -190,8 +189,7 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   }
   LasWriter writer(summary->las_path, MakeLasOptions(config));
   const std::string cache_dir = SuperpixelCacheDir(config);
-  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress,
-                                     ViewsInFlight(config, input, /*untiled=*/true));
+  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress, views_in_flight);
   const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, writer);
   summary->superpixels_computed = fused.superpixels_computed;
   summary->superpixel_seconds = fused.load_seconds;
@@ -273,9 +271,9 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
     spdlog::info("fusion method: {} (comparison method; no superpixels)", NameOf(config.fusion.method));
   }
   if (tiled) {
-    RunTiled(config, input, progress, rerun_tiles, &summary);
+    RunTiled(config, input, progress, rerun_tiles, decision.views_in_flight, &summary);
   } else {
-    RunUntiled(config, input, progress, &summary);
+    RunUntiled(config, input, progress, decision.views_in_flight, &summary);
   }
 
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -1,7 +1,6 @@
 #include "jobs/tile_fusion.h"
 
 #include <atomic>
-#include <mutex>
 #include <vector>
 
 #include "core/colour_resample.h"
@@ -51,18 +50,15 @@ size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, con
   } else {
     for (const TileViewWindow& tw : only_tile->views) todo.push_back(tw.view);
   }
-  std::atomic<size_t> computed{0}, done{0};
-  std::mutex progress_mutex;
+  std::atomic<size_t> computed{0};
   ForEachViewInBatches(todo.size(), views_in_flight, [&](size_t i) {
     const size_t v = todo[i];
     if (EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir,
                          with_superpixels, inputs.at(v))) {
       ++computed;
     }
-    if (progress) {
-      const std::lock_guard<std::mutex> lock(progress_mutex);
-      progress("superpixels", ++done, todo.size());
-    }
+  }, [&](size_t done) {
+    if (progress) progress("superpixels", done, todo.size());
   });
   return computed;
 }

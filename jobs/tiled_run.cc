@@ -12,7 +12,6 @@
 #include "jobs/fusion_methods.h"
 #include "jobs/las_options.h"
 #include "jobs/tile_fusion.h"
-#include "jobs/view_batches.h"
 #include "tiles/memory_model.h"
 #include "tiles/tile_manifest.h"
 #include "tiles/tile_merge.h"
@@ -27,11 +26,10 @@ double SecondsSince(std::chrono::steady_clock::time_point start) {
 // Stage 2: the caches of every view the tiles read, before any tile runs.
 void MakeViewCaches(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                     const std::vector<ViewIdentity>& identities, bool superpixels, const TileWorkList& work,
-                    const StageProgress& progress, TiledRunOutcome* out) {
+                    const StageProgress& progress, size_t views_in_flight, TiledRunOutcome* out) {
   const auto start = std::chrono::steady_clock::now();
   out->superpixels_computed = EnsureTiledSuperpixels(input, plan, config.fusion.sac, SuperpixelCacheDir(config),
-                                                     identities, progress, nullptr, superpixels,
-                                                     ViewsInFlight(config, input, /*untiled=*/false));
+                                                     identities, progress, nullptr, superpixels, views_in_flight);
   out->superpixel_seconds = SecondsSince(start);
   if (superpixels) {
     spdlog::info("superpixels: {} computed, {} reused ({:.1f} s); {} of {} tiles to compute",
@@ -48,7 +46,7 @@ void MakeViewCaches(const JobConfig& config, const DepthBlock& input, const Tile
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, const std::string& fused_las_path,
-                            const StageProgress& progress) {
+                            const StageProgress& progress, size_t views_in_flight) {
   const FusionNeeds needs = MakeFusionMethod(config.fusion)->needs();
   if (needs.consistency_graphs) {
     throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
@@ -62,7 +60,9 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   out.tiles_skipped = work.tiles_skipped;
   out.tiles_rerun_for_inputs = work.rerun_for_inputs;
   RecordTiledRunState(config, plan, job.las, work.todo.size());
-  if (!work.todo.empty()) MakeViewCaches(config, input, plan, identities, needs.superpixels, work, progress, &out);
+  if (!work.todo.empty()) {
+    MakeViewCaches(config, input, plan, identities, needs.superpixels, work, progress, views_in_flight, &out);
+  }
 
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
   MethodTileFuser fuser(config, input, plan, identities, &cluster_cache);

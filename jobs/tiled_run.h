@@ -47,9 +47,10 @@ struct TiledRunOutcome {
 // recorded inputs differ from `identities` (the views' current ones; logged with the views that changed).
 // fused_las_path is replaced (by a rename) only by a complete merge: a run that fails leaves the previous one.
 // Every LAS is written with jobs/las_options.h (tiles: TileLasOptions; the merged cloud: FusedCloudOptions).
+// `views_in_flight`: views the superpixel pass prepares at once (TilingDecision::views_in_flight).
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, const std::string& fused_las_path,
-                            const StageProgress& progress = {});
+                            const StageProgress& progress = {}, size_t views_in_flight = 1);
 
 }  // namespace sacfuse

@@ -6,6 +6,7 @@
 // which the views of a batch finish (each view writes only its own slot).
 #include <algorithm>
 #include <cstddef>
+#include <mutex>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,31 +14,36 @@
 
 namespace sacfuse {
 
-class DepthBlock;
-struct JobConfig;
-
-// Views a run prepares at once: one per thread of the run, as many as resources.memory_gb holds beside what the
-// run holds meanwhile (tiles/memory_model.h SuperpixelViewsInFlight): the whole block's rasters in an untiled run
-// (`untiled`), nothing but the process in the tiled superpixel pass.
-size_t ViewsInFlight(const JobConfig& config, const DepthBlock& input, bool untiled);
-
-// Calls body(i) for every i in [0, count), at most `in_flight` (>= 1) at once.
-template <typename Body>
-void ForEachViewInBatches(size_t count, size_t in_flight, const Body& body) {
+// Calls body(i) for every i in [0, count), at most `in_flight` (>= 1) at once, and after each body
+// finished(n), n = the views finished so far (1, 2, ..., count), one call at a time (for progress reports).
+template <typename Body, typename Finished>
+void ForEachViewInBatches(size_t count, size_t in_flight, const Body& body, const Finished& finished) {
   const size_t batch = std::max<size_t>(1, in_flight);
+  std::mutex finished_mutex;
+  size_t done = 0;
+  auto one = [&](size_t i) {
+    body(i);
+    const std::lock_guard<std::mutex> lock(finished_mutex);
+    finished(++done);
+  };
   for (size_t first = 0; first < count; first += batch) {
     const size_t last = std::min(count, first + batch);
     if (last - first == 1) {
-      body(first);
+      one(first);
     } else {
       tbb::parallel_for(
           tbb::blocked_range<size_t>(first, last, 1),
           [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) body(i);
+            for (size_t i = r.begin(); i < r.end(); ++i) one(i);
           },
           tbb::simple_partitioner());
     }
   }
+}
+
+template <typename Body>
+void ForEachViewInBatches(size_t count, size_t in_flight, const Body& body) {
+  ForEachViewInBatches(count, in_flight, body, [](size_t) {});
 }
 
 }  // namespace sacfuse
