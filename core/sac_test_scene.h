@@ -55,13 +55,13 @@ inline SuperpixelMap GridSuperpixels(const DepthMap& depth, int cell) {
   map.height = depth.height;
   const int cols = (depth.width + cell - 1) / cell;
   const int rows = (depth.height + cell - 1) / cell;
-  map.labels.resize(static_cast<size_t>(depth.width) * depth.height);
+  std::vector<int32_t> labels(static_cast<size_t>(depth.width) * depth.height);
   map.clusters.resize(static_cast<size_t>(cols) * rows);
   std::vector<std::vector<float>> depths(map.clusters.size());
   for (int r = 0; r < depth.height; ++r) {
     for (int c = 0; c < depth.width; ++c) {
       const int label = (r / cell) * cols + c / cell;
-      map.labels[static_cast<size_t>(r) * depth.width + c] = label;
+      labels[static_cast<size_t>(r) * depth.width + c] = label;
       auto& cl = map.clusters[label];
       cl.centroid_col += c + 0.5f;
       cl.centroid_row += r + 0.5f;
@@ -79,6 +79,7 @@ inline SuperpixelMap GridSuperpixels(const DepthMap& depth, int cell) {
       cl.depth_m = depths[i][depths[i].size() / 2];
     }
   }
+  map.labels = SuperpixelLabels(map.width, map.height, labels);
   return map;
 }
 

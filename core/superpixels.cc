@@ -476,7 +476,7 @@ SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, c
   SuperpixelMap map;
   map.width = depth.width;
   map.height = depth.height;
-  map.labels.assign(depth.num_pixels(), 0);
+  std::vector<int32_t> labels(depth.num_pixels(), 0);  // stored as SuperpixelLabels at the end
 
   const int min_block = 2 * options.region_size_px;
   const std::vector<int> xs = BlockEdges(depth.width, options.block_size_px, min_block);
@@ -494,7 +494,7 @@ SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, c
   tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
     BlockScratch& scratch = scratches.local();
     for (size_t b = range.begin(); b != range.end(); ++b) {
-      block_clusters[b] = ProcessBlock(image, depth, blocks[b].rect, options, map.labels.data(), &scratch);
+      block_clusters[b] = ProcessBlock(image, depth, blocks[b].rect, options, labels.data(), &scratch);
     }
   });
 
@@ -515,18 +515,19 @@ SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, c
       if (first[b] == 0) continue;
       const cv::Rect& r = blocks[b].rect;
       for (int row = r.y; row < r.y + r.height; ++row) {
-        int32_t* out = map.labels.data() + static_cast<size_t>(row) * map.width + r.x;
+        int32_t* out = labels.data() + static_cast<size_t>(row) * map.width + r.x;
         for (int col = 0; col < r.width; ++col) out[col] += first[b];
       }
     }
   });
+  map.labels = SuperpixelLabels(map.width, map.height, labels);
   return map;
 }
 
 std::vector<std::vector<uint32_t>> ClusterAdjacency(const SuperpixelMap& map) {
   const size_t n = map.clusters.size();
   if (map.width < 0 || map.height < 0 ||
-      map.labels.size() != static_cast<size_t>(map.width) * static_cast<size_t>(map.height)) {
+      map.labels.width() != map.width || map.labels.height() != map.height) {
     throw Error("ClusterAdjacency: labels do not match width x height");
   }
   constexpr int kBandRows = 64;
@@ -545,16 +546,21 @@ std::vector<std::vector<uint32_t>> ClusterAdjacency(const SuperpixelMap& map) {
       if (k != last) pairs.push_back(k);
       last = k;
     };
+    std::vector<int32_t> rows(2 * static_cast<size_t>(map.width));
+    int32_t* here = rows.data();
+    int32_t* below = here + map.width;
+    if (band * kBandRows < row_end) map.labels.CopyRow(band * kBandRows, below);
     for (int row = band * kBandRows; row < row_end; ++row) {
-      const int32_t* here = map.labels.data() + static_cast<size_t>(row) * map.width;
-      const int32_t* below = row + 1 < map.height ? here + map.width : nullptr;
+      std::swap(here, below);
+      const bool has_below = row + 1 < map.height;
+      if (has_below) map.labels.CopyRow(row + 1, below);
       for (int col = 0; col < map.width; ++col) {
         if (here[col] < 0 || static_cast<size_t>(here[col]) >= n) {
           throw Error("ClusterAdjacency: label " + std::to_string(here[col]) + " out of range at row " +
                       std::to_string(row) + ", col " + std::to_string(col));
         }
         if (col + 1 < map.width) add(here[col], here[col + 1]);
-        if (below != nullptr) add(here[col], below[col]);
+        if (has_below) add(here[col], below[col]);
       }
     }
     std::sort(pairs.begin(), pairs.end());

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/raster.h"
+#include "core/superpixel_labels.h"
 
 namespace sacfuse {
 
@@ -53,9 +54,9 @@ struct SuperpixelCluster {
 
 struct SuperpixelMap {
   int width = 0, height = 0;
-  std::vector<int32_t> labels;  // row-major cluster index per pixel, 0..clusters.size()-1
+  SuperpixelLabels labels;  // cluster index per pixel, 0..clusters.size()-1; width x height
   std::vector<SuperpixelCluster> clusters;
-  int32_t label(int row, int col) const { return labels[static_cast<size_t>(row) * width + col]; }
+  int32_t label(int row, int col) const { return labels.at(row, col); }
 };
 
 // Segments `depth`'s grid. `image` (RGB, 3 channels, or 1-channel grey) may have a different size with the

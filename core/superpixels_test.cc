@@ -166,7 +166,8 @@ TEST(SuperpixelsTest, PixelsAlgorithmMakesOneClusterPerPixelWithItsDepth) {
   depth.at(5, 7) = 0.0f;  // invalid
   const SuperpixelMap map = ComputeSuperpixels(image, depth, options);
   ASSERT_EQ(map.clusters.size(), 100u * 37u);
-  std::set<int32_t> labels(map.labels.begin(), map.labels.end());
+  const std::vector<int32_t> all = map.labels.ToVector();
+  std::set<int32_t> labels(all.begin(), all.end());
   EXPECT_EQ(labels.size(), map.clusters.size());
   for (int row = 0; row < 37; ++row) {
     for (int col = 0; col < 100; ++col) {
@@ -271,13 +272,15 @@ TEST(SuperpixelsTest, AdjacencyOfKnownLayout) {
   // 0 0 1 1 1
   // 2 2 3 3 4
   // 2 2 3 3 4
-  map.labels = {0, 0, 1, 1, 1, 0, 0, 1, 1, 1, 2, 2, 3, 3, 4, 2, 2, 3, 3, 4};
+  std::vector<int32_t> labels = {0, 0, 1, 1, 1, 0, 0, 1, 1, 1, 2, 2, 3, 3, 4, 2, 2, 3, 3, 4};
+  map.labels = SuperpixelLabels(5, 4, labels);
   map.clusters.resize(5);
   const auto adjacency = ClusterAdjacency(map);
   const std::vector<std::vector<uint32_t>> expected = {{1, 2}, {0, 3, 4}, {0, 3}, {1, 2, 4}, {1, 3}};
   EXPECT_EQ(adjacency, expected);
 
-  map.labels[0] = 7;
+  labels[0] = 7;
+  map.labels = SuperpixelLabels(5, 4, labels);
   EXPECT_THROW(ClusterAdjacency(map), Error);
 }
 

@@ -67,7 +67,8 @@ inline float Median(std::vector<float> v) {
 
 // Recomputes every cluster's statistics from the labels and checks them against the map.
 inline void ExpectClusterStatsConsistent(const SuperpixelMap& map, const DepthMap& depth, int min_valid_pixels) {
-  ASSERT_EQ(map.labels.size(), static_cast<size_t>(map.width) * map.height);
+  ASSERT_EQ(map.labels.width(), map.width);
+  ASSERT_EQ(map.labels.height(), map.height);
   const size_t n = map.clusters.size();
   std::vector<double> sc(n, 0), sr(n, 0);
   std::vector<uint32_t> count(n, 0);
@@ -98,14 +99,15 @@ inline void ExpectClusterStatsConsistent(const SuperpixelMap& map, const DepthMa
 
 // Every label is one 4-connected region (BFS over the raster, brute force).
 inline void ExpectClustersConnected(const SuperpixelMap& map) {
-  std::vector<char> seen(map.labels.size(), 0);
+  const std::vector<int32_t> labels = map.labels.ToVector();
+  std::vector<char> seen(labels.size(), 0);
   std::vector<char> label_seen(map.clusters.size(), 0);
   std::vector<int> stack;
   for (int r = 0; r < map.height; ++r) {
     for (int c = 0; c < map.width; ++c) {
       const size_t start = static_cast<size_t>(r) * map.width + c;
       if (seen[start]) continue;
-      const int32_t l = map.labels[start];
+      const int32_t l = labels[start];
       ASSERT_FALSE(label_seen[static_cast<size_t>(l)]) << "label " << l << " has a second component at row " << r
                                                        << ", col " << c;
       label_seen[static_cast<size_t>(l)] = 1;
@@ -120,7 +122,7 @@ inline void ExpectClustersConnected(const SuperpixelMap& map) {
         for (int k = 0; k < 4; ++k) {
           if (nr[k] < 0 || nc[k] < 0 || nr[k] >= map.height || nc[k] >= map.width) continue;
           const size_t j = static_cast<size_t>(nr[k]) * map.width + nc[k];
-          if (!seen[j] && map.labels[j] == l) {
+          if (!seen[j] && labels[j] == l) {
             seen[j] = 1;
             stack.push_back(static_cast<int>(j));
           }

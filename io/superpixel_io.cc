@@ -22,8 +22,8 @@ constexpr char kMagicInt32[8] = {'S', 'A', 'C', 'S', 'P', 'X', '0', '1'};  // in
 constexpr char kMagicBanded[8] = {'S', 'A', 'C', 'S', 'P', 'X', '0', '2'};  // u16 offsets in row bands
 constexpr uint64_t kHeaderBytes = 32;
 constexpr uint64_t kClusterBytes = 20;
-constexpr int kBandRows = 64;          // rows per band of the banded layout
-constexpr int64_t kMaxBandSpan = 65535;  // largest label - band base a u16 holds
+// The banded layout is SuperpixelLabels' storage (core/superpixel_labels.h).
+constexpr int kBandRows = SuperpixelLabels::kBandRows;
 
 uint64_t NumBands(uint64_t height) { return (height + kBandRows - 1) / kBandRows; }
 
@@ -192,29 +192,15 @@ void ReadLabelRun(const OpenFile& open, const std::string& path, uint64_t row, u
 // Reads rows [row_begin, row_end) into map->labels and range-checks them.
 void ReadLabelRows(const OpenFile& open, const std::string& path, int row_begin, int row_end, SuperpixelMap* map) {
   const auto width = static_cast<size_t>(open.info.width);
-  map->labels.resize(width * static_cast<size_t>(row_end - row_begin));
+  std::vector<int32_t> labels(width * static_cast<size_t>(row_end - row_begin));
   // One read per band (banded) or for all rows (int32): contiguous on disk either way.
   for (int row = row_begin; row < row_end;) {
     const int band_end = open.banded ? std::min(row_end, (row / kBandRows + 1) * kBandRows) : row_end;
     ReadLabelRun(open, path, static_cast<uint64_t>(row), 0, width * static_cast<size_t>(band_end - row),
-                 map->labels.data() + width * static_cast<size_t>(row - row_begin));
+                 labels.data() + width * static_cast<size_t>(row - row_begin));
     row = band_end;
   }
-}
-
-// Whether every band of kBandRows rows spans at most kMaxBandSpan labels (then the banded layout holds the map);
-// `base` receives each band's smallest label.
-bool BandsFit(const SuperpixelMap& map, std::vector<uint32_t>* base) {
-  const auto width = static_cast<size_t>(map.width);
-  base->assign(NumBands(static_cast<uint64_t>(map.height)), 0);
-  for (size_t b = 0; b < base->size(); ++b) {
-    const size_t begin = b * kBandRows * width;
-    const size_t end = std::min(map.labels.size(), (b + 1) * kBandRows * width);
-    const auto [lo, hi] = std::minmax_element(map.labels.begin() + begin, map.labels.begin() + end);
-    if (*hi - static_cast<int64_t>(*lo) > kMaxBandSpan) return false;
-    (*base)[b] = static_cast<uint32_t>(*lo);
-  }
-  return true;
+  map->labels = SuperpixelLabels(open.info.width, row_end - row_begin, labels);
 }
 
 void WriteAll(std::FILE* f, const void* data, size_t bytes, const std::string& path, const std::string& tmp) {
@@ -227,21 +213,26 @@ void WriteAll(std::FILE* f, const void* data, size_t bytes, const std::string& p
 
 void WriteSuperpixels(const std::string& path, const SuperpixelMap& map, uint64_t options_hash) {
   if (map.width < 0 || map.height < 0 || (map.width == 0) != (map.height == 0) ||
-      map.labels.size() != static_cast<size_t>(map.width) * static_cast<size_t>(map.height)) {
+      map.labels.width() != map.width || map.labels.height() != map.height) {
     throw Error(path + ": WriteSuperpixels: labels do not match " + std::to_string(map.width) + "x" +
                 std::to_string(map.height));
   }
   if (map.clusters.size() > static_cast<size_t>(INT32_MAX)) throw Error(path + ": WriteSuperpixels: too many clusters");
   const auto n = static_cast<int64_t>(map.clusters.size());
-  for (size_t i = 0; i < map.labels.size(); ++i) {
-    if (map.labels[i] < 0 || map.labels[i] >= n) {
-      throw Error(path + ": WriteSuperpixels: label " + std::to_string(map.labels[i]) + " out of range [0, " +
-                  std::to_string(n) + ")");
+  std::vector<int32_t> labels(static_cast<size_t>(map.width));
+  for (int r = 0; r < map.height; ++r) {
+    map.labels.CopyRow(r, labels.data());
+    for (const int32_t label : labels) {
+      if (label < 0 || label >= n) {
+        throw Error(path + ": WriteSuperpixels: label " + std::to_string(label) + " out of range [0, " +
+                    std::to_string(n) + ")");
+      }
     }
   }
 
-  std::vector<uint32_t> band_base;
-  const bool banded = BandsFit(map, &band_base);
+  // The file's layout is the in-memory one: banded when SuperpixelLabels could band the labels.
+  const bool banded = map.labels.banded();
+  const std::vector<uint32_t>& band_base = map.labels.band_base();
   const auto parent = std::filesystem::path(path).parent_path();
   if (!parent.empty()) std::filesystem::create_directories(parent);
   const std::string tmp = TemporaryPathFor(path);
@@ -265,16 +256,14 @@ void WriteSuperpixels(const std::string& path, const SuperpixelMap& map, uint64_
     const size_t label_bytes = banded ? 2 : 4;
     std::vector<unsigned char> row(static_cast<size_t>(map.width) * label_bytes);
     for (int r = 0; r < map.height; ++r) {
-      const int32_t* labels = map.labels.data() + static_cast<size_t>(r) * map.width;
-      const uint32_t base = banded ? band_base[static_cast<size_t>(r / kBandRows)] : 0;
       for (int c = 0; c < map.width; ++c) {
         unsigned char* p = row.data() + static_cast<size_t>(c) * label_bytes;
         if (banded) {
-          const uint32_t offset = static_cast<uint32_t>(labels[c]) - base;
+          const uint16_t offset = map.labels.offsets_row(r)[c];
           p[0] = static_cast<unsigned char>(offset);
           p[1] = static_cast<unsigned char>(offset >> 8);
         } else {
-          PutU32(p, static_cast<uint32_t>(labels[c]));
+          PutU32(p, static_cast<uint32_t>(map.labels.wide_row(r)[c]));
         }
       }
       WriteAll(f, row.data(), row.size(), path, tmp);
@@ -309,7 +298,11 @@ SuperpixelMap ReadSuperpixels(const std::string& path) {
   map.clusters = ReadClusterTable(open, path);
   ReadLabelRows(open, path, 0, map.height, &map);
   std::vector<uint32_t> counts(map.clusters.size(), 0);
-  for (const int32_t label : map.labels) ++counts[static_cast<size_t>(label)];
+  std::vector<int32_t> row(static_cast<size_t>(map.width));
+  for (int r = 0; r < map.height; ++r) {
+    map.labels.CopyRow(r, row.data());
+    for (const int32_t label : row) ++counts[static_cast<size_t>(label)];
+  }
   for (size_t i = 0; i < counts.size(); ++i) {
     if (counts[i] != map.clusters[i].pixel_count) {
       throw InputError(path, "cluster " + std::to_string(i) + " has " + std::to_string(counts[i]) +

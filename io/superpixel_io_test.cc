@@ -22,12 +22,12 @@ SuperpixelMap MakeMap(int width, int height) {
   map.height = height;
   const int cells_x = (width + 7) / 8;
   map.clusters.resize(static_cast<size_t>(cells_x) * ((height + 7) / 8));
-  map.labels.resize(static_cast<size_t>(width) * height);
+  std::vector<int32_t> labels(static_cast<size_t>(width) * height);
   std::vector<double> sc(map.clusters.size(), 0), sr(map.clusters.size(), 0);
   for (int r = 0; r < height; ++r) {
     for (int c = 0; c < width; ++c) {
       const int32_t l = (r / 8) * cells_x + c / 8;
-      map.labels[static_cast<size_t>(r) * width + c] = l;
+      labels[static_cast<size_t>(r) * width + c] = l;
       ++map.clusters[l].pixel_count;
       if ((r + c) % 4 != 0) ++map.clusters[l].valid_count;
       sc[l] += c + 0.5;
@@ -40,6 +40,7 @@ SuperpixelMap MakeMap(int width, int height) {
     cl.centroid_row = static_cast<float>(sr[i] / cl.pixel_count);
     cl.depth_m = i % 5 == 0 ? 0.0f : 12.5f + 0.25f * i;
   }
+  map.labels = SuperpixelLabels(width, height, labels);
   return map;
 }
 
@@ -106,8 +107,9 @@ TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
     const SuperpixelMap rows = ReadSuperpixelRows(path, window.first, window.second);
     EXPECT_EQ(rows.width, 37);
     EXPECT_EQ(rows.height, window.second - window.first);
-    const std::vector<int32_t> slice(map.labels.begin() + window.first * 37, map.labels.begin() + window.second * 37);
-    EXPECT_EQ(rows.labels, slice);
+    const std::vector<int32_t> all = map.labels.ToVector();
+    const std::vector<int32_t> slice(all.begin() + window.first * 37, all.begin() + window.second * 37);
+    EXPECT_EQ(rows.labels.ToVector(), slice);
     ExpectClustersEqual(rows.clusters, map.clusters);
   }
   EXPECT_THROW(ReadSuperpixelRows(path, 5, 151), Error);
@@ -175,8 +177,9 @@ TEST(SuperpixelIoTest, MapsWhoseBandsSpanTooManyLabelsUseInt32Labels) {
   SuperpixelMap map;
   map.width = 70000;
   map.height = 1;
+  std::vector<int32_t> labels;
   for (int c = 0; c < map.width; ++c) {
-    map.labels.push_back(c);
+    labels.push_back(c);
     SuperpixelCluster cluster;
     cluster.centroid_col = c + 0.5f;
     cluster.centroid_row = 0.5f;
@@ -185,6 +188,8 @@ TEST(SuperpixelIoTest, MapsWhoseBandsSpanTooManyLabelsUseInt32Labels) {
     cluster.valid_count = 1;
     map.clusters.push_back(cluster);
   }
+  map.labels = SuperpixelLabels(map.width, map.height, labels);
+  EXPECT_FALSE(map.labels.banded());
   WriteSuperpixels(path, map, 9);
   const std::string bytes = Slurp(path);
   EXPECT_EQ(bytes.substr(0, 8), "SACSPX01");
@@ -275,10 +280,13 @@ TEST(SuperpixelIoTest, InconsistentMapsAreNotWritten) {
   testing::TempDir dir;
   const std::string path = (dir / "x.spx").string();
   SuperpixelMap map = MakeMap(10, 10);
-  map.labels[5] = static_cast<int32_t>(map.clusters.size());
+  std::vector<int32_t> labels = map.labels.ToVector();
+  labels[5] = static_cast<int32_t>(map.clusters.size());
+  map.labels = SuperpixelLabels(10, 10, labels);
   EXPECT_THROW(WriteSuperpixels(path, map, 0), Error);
   map = MakeMap(10, 10);
-  map.labels.pop_back();
+  labels.resize(90);
+  map.labels = SuperpixelLabels(10, 9, labels);  // one row short
   EXPECT_THROW(WriteSuperpixels(path, map, 0), Error);
   EXPECT_FALSE(std::filesystem::exists(path));
   EXPECT_TRUE(std::filesystem::is_empty(dir.path()));

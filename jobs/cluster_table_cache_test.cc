@@ -14,8 +14,9 @@ std::string WriteRowClusters(const testing::TempDir& dir, const std::string& nam
   SuperpixelMap map;
   map.width = w;
   map.height = h;
+  std::vector<int32_t> labels;
   for (int r = 0; r < h; ++r) {
-    for (int c = 0; c < w; ++c) map.labels.push_back(r);
+    for (int c = 0; c < w; ++c) labels.push_back(r);
     SuperpixelCluster cl;
     cl.centroid_col = w / 2.0f;
     cl.centroid_row = r + 0.5f;
@@ -24,6 +25,7 @@ std::string WriteRowClusters(const testing::TempDir& dir, const std::string& nam
     cl.valid_count = static_cast<uint32_t>(w);
     map.clusters.push_back(cl);
   }
+  map.labels = SuperpixelLabels(w, h, labels);
   const std::string path = (dir / name).string();
   WriteSuperpixels(path, map, 1);
   return path;

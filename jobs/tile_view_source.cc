@@ -29,7 +29,7 @@ SuperpixelMap WindowSuperpixels(std::vector<int32_t> labels, const std::vector<S
     out.clusters.push_back(cluster);
   }
   for (int32_t& l : labels) l = local[static_cast<size_t>(l)];
-  out.labels = std::move(labels);
+  out.labels = SuperpixelLabels(out.width, out.height, labels);
   return out;
 }
 
