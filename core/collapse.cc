@@ -76,7 +76,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                        const std::vector<uint32_t>& chosen_view, const std::vector<uint32_t>& redundancy_judges,
                        const std::vector<std::vector<uint32_t>>& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
-                       const SacOptions& options, const OwnedRegion& owner,
+                       const SacOptions& options, const OwnedRegion& owner, const RgbImage* colours,
                        PointSink& sink) {
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
@@ -163,7 +163,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                                                      combine_options, plane_normal);
           p.point_in_world = PixelPoint(view, row, col, refined.depth_m);
         }
-        p.rgb = PixelColour(view, row, col);
+        p.rgb = PixelColour(colours, depth, row, col);
         p.view_index = view.view.index;
         out.push_back(p);
         result.rows.push_back(row);

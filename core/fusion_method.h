@@ -24,6 +24,20 @@ struct FusionNeeds {
   // true: the method applies FusionScope::owns to each pixel's own point itself (SAC, whose averaging moves a
   // point along its ray differently in each tile); false: the job keeps the emitted points the scope owns.
   bool owns_pixels = false;
+  // true: the method reads a view's colours only while it emits that view's points, one view after another (SAC).
+  // The job then loads no colours with the views (SacView::image stays null) and hands each view's colours out
+  // when asked (FusionScope::colours), so a run holds one view's colours instead of every view's (issue 13: 3 B
+  // per depth pixel, a sixth of an untiled run's heap).
+  bool colours_one_view_at_a_time = false;
+};
+
+// Colours loaded when a method asks for them (FusionNeeds::colours_one_view_at_a_time).
+class ViewColours {
+ public:
+  virtual ~ViewColours() = default;
+  // The colours of views[i] on its depth raster or window, what SacView::image would point to; empty = grey
+  // points. Throws InputError for an unreadable image.
+  virtual RgbImage Load(size_t i) const = 0;
 };
 
 // Where one run sits in the block.
@@ -32,6 +46,7 @@ struct FusionScope {
   double gsd_m = 0.0;                       // the block's GSD, metres (needs.block_geometry)
   const Box2d* region_xy = nullptr;  // the XY box the views were cut to (a tile's halo); null = unbounded
   OwnedRegion owns;                  // which pixels (or points) the run emits: a tile's core (default: all)
+  const ViewColours* colours = nullptr;  // set by the job when the method needs colours one view at a time
 };
 
 class FusionMethod {

@@ -67,9 +67,10 @@ std::unique_ptr<FusionMethod> MakeSacMethod(const SacOptions& options, const Sac
   needs.superpixels = true;
   needs.consistency_graphs = options.correspondence == "dense";
   needs.owns_pixels = true;
+  needs.colours_one_view_at_a_time = true;  // the collapse emits view after view (core/collapse.h)
   return std::make_unique<FunctionMethod>(
       "sac", needs, [options, progress](const std::vector<SacView>& views, const FusionScope& scope, PointSink& sink) {
-        return FromSacStats(RunSacFusion(views, options, sink, progress, scope.owns));
+        return FromSacStats(RunSacFusion(views, options, sink, progress, scope.owns, scope.colours));
       });
 }
 

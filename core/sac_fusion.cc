@@ -3,6 +3,8 @@
 #include <chrono>
 #include <utility>
 
+#include <tbb/task_group.h>
+
 #include "core/correspondences.h"
 #include "core/netlets.h"
 #include "core/redundancy.h"
@@ -30,7 +32,7 @@ class StageTimer {
 }  // namespace
 
 SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& options, PointSink& sink,
-                      const SacProgress& progress, const OwnedRegion& owner) {
+                      const SacProgress& progress, const OwnedRegion& owner, const ViewColours* colours) {
   ValidateSacOptions(options);
   SacStats stats;
   StageTimer timer(&stats);
@@ -68,9 +70,26 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   // Judged on demand by the collapse (core/point_verdicts.h): their time is part of the collapse stage.
   const PointVerdicts verdicts(views, neighbors, std::move(judges), noise_factor, options);
   stats.emitted_per_view.assign(views.size(), 0);
+  // With `colours`, only the emitting view's colours are held, and the next view's are loaded (decoded) while it
+  // emits, so that the loading does not hold up the collapse (FusionNeeds::colours_one_view_at_a_time).
+  RgbImage current, next;
+  if (colours != nullptr && !views.empty()) current = colours->Load(0);
   for (uint32_t v = 0; v < views.size(); ++v) {
-    const CollapseStats s = EmitView(v, views, nodes, chosen, redundancy_judges[v], combine_views, noise_factor,
-                                     verdicts, options, owner, sink);
+    tbb::task_group loading;
+    if (colours != nullptr && v + 1 < views.size()) loading.run([&, v] { next = colours->Load(v + 1); });
+    CollapseStats s;
+    try {
+      s = EmitView(v, views, nodes, chosen, redundancy_judges[v], combine_views, noise_factor, verdicts, options,
+                   owner, colours != nullptr ? &current : views[v].image, sink);
+    } catch (...) {
+      try {
+        loading.wait();
+      } catch (...) {  // the emission's error is the one to report
+      }
+      throw;
+    }
+    loading.wait();  // rethrows a loading error
+    current = std::exchange(next, RgbImage{});
     stats.emitted_per_view[v] = s.emitted;
     stats.collapse += s;
     if (progress) progress("collapse", v + 1, views.size());

@@ -33,8 +33,10 @@ using SacProgress = std::function<void(const std::string& stage, size_t done, si
 // Fuses `views` and streams the points to `sink`, view by view in input order. Deterministic for any thread count.
 // `owner` (core/owned_region.h) is judged on each pixel's own back-projected point (before the averaging combine
 // moves it along its ray), so that tiles sharing a halo emit every pixel exactly once although their averages
-// differ slightly.
+// differ slightly. `colours`: where each view's colours come from while it emits (core/fusion_method.h); null =
+// SacView::image.
 SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& options, PointSink& sink,
-                      const SacProgress& progress = {}, const OwnedRegion& owner = {});
+                      const SacProgress& progress = {}, const OwnedRegion& owner = {},
+                      const ViewColours* colours = nullptr);
 
 }  // namespace sacfuse

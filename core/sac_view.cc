@@ -56,9 +56,14 @@ void PrefetchDepthAround(const SacView& view, const ViewPoint& at) {
 
 std::array<uint8_t, 3> PixelColour(const SacView& view, int row, int col) {
   if (view.image == nullptr || view.image->empty()) return {128, 128, 128};
-  const RgbImage& img = *view.image;
-  const int ic = std::min(img.width - 1, static_cast<int>((col + 0.5) * img.width / view.depth->width));
-  const int ir = std::min(img.height - 1, static_cast<int>((row + 0.5) * img.height / view.depth->height));
+  return PixelColour(view.image, *view.depth, row, col);
+}
+
+std::array<uint8_t, 3> PixelColour(const RgbImage* image, const DepthMap& depth, int row, int col) {
+  if (image == nullptr || image->empty()) return {128, 128, 128};
+  const RgbImage& img = *image;
+  const int ic = std::min(img.width - 1, static_cast<int>((col + 0.5) * img.width / depth.width));
+  const int ir = std::min(img.height - 1, static_cast<int>((row + 0.5) * img.height / depth.height));
   std::array<uint8_t, 3> rgb;
   for (int c = 0; c < 3; ++c) rgb[c] = img.at(ir, ic, std::min(c, img.channels - 1));
   return rgb;

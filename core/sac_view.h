@@ -79,5 +79,7 @@ void PrefetchDepthAround(const SacView& view, const ViewPoint& at);
 // The colour of depth pixel (row, col): the image pixel under its centre (the image may have another resolution
 // than the depth raster); mid grey when the view has no image.
 std::array<uint8_t, 3> PixelColour(const SacView& view, int row, int col);
+// The same with the image given apart from the view (null = grey).
+std::array<uint8_t, 3> PixelColour(const RgbImage* image, const DepthMap& depth, int row, int col);
 
 }  // namespace sacfuse

@@ -2,6 +2,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <optional>
 
 #include "core/colour_resample.h"
 #include "core/error.h"
@@ -27,12 +28,16 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
     const View& view = views[i];
     out->depths[i] = input_.ReadDepthMap(view);
     const DepthMap& depth = out->depths[i];
-    const RgbImage image = input_.ReadImage(view);
+    // The image is decoded only for what needs it: superpixels not in the cache, colours loaded with the view.
+    std::optional<RgbImage> image;
+    const auto read_image = [&]() -> const RgbImage& {
+      if (!image) image = input_.ReadImage(view);
+      return *image;
+    };
     if (needs.superpixels) {
       bool computed = false;
-      out->superpixels[i] =
-          LoadOrComputeSuperpixels(cache_dir_, view, image, depth, superpixel_options_, IdentifyView(input_, view),
-                                   &computed);
+      out->superpixels[i] = LoadOrComputeSuperpixels(cache_dir_, view, read_image, depth, superpixel_options_,
+                                                     IdentifyView(input_, view), &computed);
       if (computed) ++computed_views;
     }
     if (needs.consistency_graphs) {
@@ -44,7 +49,9 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
       }
       out->graphs[i] = input_.ReadConsistencyGraph(view);
     }
-    out->colours[i] = ResampleColourToDepthGrid(image, depth.width, depth.height);
+    if (!needs.colours_one_view_at_a_time) {
+      out->colours[i] = ResampleColourToDepthGrid(read_image(), depth.width, depth.height);
+    }
   }, [&](size_t loaded) {
     if (progress_) progress_(needs.superpixels ? "load + superpixels" : "load", loaded, views.size());
   });
@@ -57,6 +64,11 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
   out->superpixels_computed = computed_views;
   out->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+RgbImage BlockViewSource::LoadColours(const LoadedViews& loaded, size_t i) const {
+  const DepthMap& depth = loaded.depths[i];
+  return ResampleColourToDepthGrid(input_.ReadImage(input_.views()[loaded.view_ids[i]]), depth.width, depth.height);
 }
 
 }  // namespace sacfuse

@@ -17,6 +17,7 @@ class BlockViewSource : public ViewSource {
   BlockViewSource(const DepthBlock& input, const SuperpixelOptions& superpixels, std::string cache_dir,
                   SacProgress progress = {}, size_t views_in_flight = 1);
   std::unique_ptr<LoadedViews> Load(const FusionNeeds& needs) const override;
+  RgbImage LoadColours(const LoadedViews& loaded, size_t i) const override;
 
  private:
   const DepthBlock& input_;

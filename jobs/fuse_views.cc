@@ -18,6 +18,17 @@ void CountInput(const std::vector<SacView>& views, const OwnedRegion& owns, Fusi
   }
 }
 
+// A source's colours, for a method that reads them one view at a time.
+class SourceColours : public ViewColours {
+ public:
+  SourceColours(const ViewSource& source, const LoadedViews& loaded) : source_(source), loaded_(loaded) {}
+  RgbImage Load(size_t i) const override { return source_.LoadColours(loaded_, i); }
+
+ private:
+  const ViewSource& source_;
+  const LoadedViews& loaded_;
+};
+
 }  // namespace
 
 FusedViews FuseViews(const FusionMethod& method, const ViewSource& source, const MethodGeometry* geometry,
@@ -35,6 +46,8 @@ FusedViews FuseViews(const FusionMethod& method, const ViewSource& source, const
     scope.plan = &plan;
     scope.gsd_m = geometry->gsd_m;
   }
+  const SourceColours colours(source, *loaded);
+  if (needs.colours_one_view_at_a_time) scope.colours = &colours;
   CountingSink written(sink);
   OwnedPointsSink owned(scope.owns, written);
   const bool filter_here = !scope.owns.OwnsEverything() && !needs.owns_pixels;

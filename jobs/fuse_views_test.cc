@@ -27,9 +27,22 @@ class FakeSource : public ViewSource {
       PixelWindow whole;
       whole.row_end = out->depths[i].height;
       whole.col_end = out->depths[i].width;
+      if (!needs.colours_one_view_at_a_time) out->colours[i] = LoadColours(*out, i);
       out->AddView(views[i].index, views[i], {out->depths[i].width, out->depths[i].height}, whole, needs, i);
     }
     return out;
+  }
+  // One colour per view: (100 + i, 50, 25) on a 2 x 2 image.
+  RgbImage LoadColours(const LoadedViews&, size_t i) const override {
+    RgbImage image(2, 2, 3, 0);
+    for (int r = 0; r < 2; ++r) {
+      for (int c = 0; c < 2; ++c) {
+        image.at(r, c, 0) = static_cast<uint8_t>(100 + i);
+        image.at(r, c, 1) = 50;
+        image.at(r, c, 2) = 25;
+      }
+    }
+    return image;
   }
 };
 
@@ -48,10 +61,15 @@ class EverythingMethod : public FusionMethod {
   FusionStats Fuse(const std::vector<SacView>& views, const FusionScope& scope, PointSink& sink) const override {
     plan_size = scope.plan != nullptr ? scope.plan->neighbors.size() : 0;
     gsd_m = scope.gsd_m;
+    images_held = 0;
+    for (const SacView& v : views) images_held += v.image != nullptr ? 1 : 0;
+    if (scope.colours != nullptr) second_view_red = scope.colours->Load(1).at(1, 1, 0);
     return MakeUnionMethod()->Fuse(views, scope, sink);
   }
   mutable size_t plan_size = 0;
   mutable double gsd_m = 0.0;
+  mutable size_t images_held = 0;
+  mutable int second_view_red = -1;  // of scope.colours->Load(1); -1 = no scope.colours
 
  private:
   FusionNeeds needs_;
@@ -89,6 +107,23 @@ TEST(FuseViewsTest, LeavesOwnershipToMethodsThatJudgePixelsThemselves) {
   const FusedViews out = FuseViews(EverythingMethod(needs), FakeSource(), nullptr, scope, sink);
   EXPECT_EQ(sink.points.size(), 2u * 120 * 90);  // this method ignored the owner, and FuseViews did not filter
   EXPECT_LT(out.stats.input_pixels, 2u * 120 * 90);
+}
+
+TEST(FuseViewsTest, ColoursComeWithTheViewsOrOneViewAtATimeAsTheMethodNeeds) {
+  VectorSink sink;
+  EverythingMethod with_views{FusionNeeds{}};
+  FuseViews(with_views, FakeSource(), nullptr, FusionScope{}, sink);
+  EXPECT_EQ(with_views.images_held, 2u);
+  EXPECT_EQ(with_views.second_view_red, -1);
+  ASSERT_FALSE(sink.points.empty());
+  EXPECT_EQ(sink.points.back().rgb, (std::array<uint8_t, 3>{101, 50, 25}));
+
+  FusionNeeds needs;
+  needs.colours_one_view_at_a_time = true;
+  EverythingMethod on_demand(needs);
+  FuseViews(on_demand, FakeSource(), nullptr, FusionScope{}, sink);
+  EXPECT_EQ(on_demand.images_held, 0u);
+  EXPECT_EQ(on_demand.second_view_red, 101);
 }
 
 TEST(FuseViewsTest, WithoutAnOwnerEveryPixelCounts) {

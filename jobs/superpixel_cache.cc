@@ -95,7 +95,8 @@ void LogCacheCheck(const CacheCheck& check, const View& view, const char* what) 
   }
 }
 
-SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view, const RgbImage& image,
+SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view,
+                                       const std::function<const RgbImage&()>& image,
                                        const DepthMap& depth, const SuperpixelOptions& options,
                                        const ViewIdentity& inputs, bool* computed) {
   const std::string path = SuperpixelCachePath(cache_dir, view.name);
@@ -111,7 +112,7 @@ SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View&
   } else {
     LogCacheCheck(check, view, "superpixels");
   }
-  SuperpixelMap map = ComputeSuperpixels(image, depth, options);
+  SuperpixelMap map = ComputeSuperpixels(image(), depth, options);
   fs::create_directories(fs::path(path).parent_path());
   WriteSuperpixels(path, map, SuperpixelOptionsHash(options));
   WriteCacheRecord(path, inputs);

@@ -5,6 +5,7 @@
 // (io/view_identity.h) when the file was written and the identity of the cache file itself: a cache is current
 // only when the inputs it depends on (superpixels: depth map and image; colours: image) are unchanged and the
 // file is the one written then (a cache file edited, truncated or replaced afterwards is recomputed).
+#include <functional>
 #include <string>
 
 #include "config/job_config.h"
@@ -31,8 +32,9 @@ CacheCheck CheckSuperpixelCache(const std::string& cache_dir, const View& view, 
 
 // Loads the cached superpixels of a view, or computes and stores them (with their input record). A cache whose
 // inputs changed is recomputed and the change logged; one that cannot be read (a corrupt body) is recomputed
-// with a warning. `*computed` tells which happened.
-SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view, const RgbImage& image,
+// with a warning. `*computed` tells which happened. `image` gives the view's image, asked only when computing.
+SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view,
+                                       const std::function<const RgbImage&()>& image,
                                        const DepthMap& depth, const SuperpixelOptions& options,
                                        const ViewIdentity& inputs, bool* computed = nullptr);
 

@@ -33,7 +33,8 @@ bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRast
   if (spx.current) return false;  // colours only: no depth needed
   const DepthMap depth = input.ReadDepthMap(view);
   bool computed = false;
-  LoadOrComputeSuperpixels(cache_dir, view, image, depth, options, inputs, &computed);
+  LoadOrComputeSuperpixels(cache_dir, view, [&]() -> const RgbImage& { return image; }, depth, options, inputs,
+                           &computed);
   return computed;
 }
 

@@ -75,11 +75,16 @@ std::unique_ptr<LoadedViews> TileViewSource::Load(const FusionNeeds& needs) cons
     if (needs.superpixels) {
       out->superpixels[i] = LoadWindowSuperpixels(view, size, tw.window, cache_dir_, cluster_cache_);
     }
-    out->colours[i] = LoadWindowColours(view, tw.window, cache_dir_);
+    if (!needs.colours_one_view_at_a_time) out->colours[i] = LoadWindowColours(view, tw.window, cache_dir_);
     out->AddView(tw.view, view, size, tw.window, needs, i);
   }
   out->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
+}
+
+RgbImage TileViewSource::LoadColours(const LoadedViews&, size_t i) const {
+  const TileViewWindow& tw = tile_.views[i];
+  return LoadWindowColours(input_.views()[tw.view], tw.window, cache_dir_);
 }
 
 }  // namespace sacfuse

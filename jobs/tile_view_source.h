@@ -17,6 +17,7 @@ class TileViewSource : public ViewSource {
   TileViewSource(const DepthBlock& input, const TilePlan& plan, const PlannedTile& tile, std::string cache_dir,
                  ClusterTableCache* cluster_cache = nullptr);
   std::unique_ptr<LoadedViews> Load(const FusionNeeds& needs) const override;
+  RgbImage LoadColours(const LoadedViews& loaded, size_t i) const override;
 
  private:
   const DepthBlock& input_;

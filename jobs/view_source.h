@@ -28,7 +28,9 @@ struct LoadedViews {
   // Storage the views point into: sized once (Reserve) before any view points into it.
   std::vector<DepthMap> depths;
   std::vector<SuperpixelMap> superpixels;
-  std::vector<RgbImage> colours;  // depth-grid resolution; empty = the view has no image (grey points)
+  // Depth-grid resolution; empty = the view has no image (grey points), or its colours are loaded when the method
+  // asks (FusionNeeds::colours_one_view_at_a_time, ViewSource::LoadColours).
+  std::vector<RgbImage> colours;
   std::vector<ConsistencyGraph> graphs;
 
   void Reserve(size_t n) {
@@ -50,6 +52,9 @@ class ViewSource {
   virtual ~ViewSource() = default;
   // Loads the views of the run with what `needs` asks for. Throws InputError / Error on unreadable inputs.
   virtual std::unique_ptr<LoadedViews> Load(const FusionNeeds& needs) const = 0;
+  // The colours of view i of `loaded` (which this source's Load returned) on its depth grid or window: what Load
+  // puts in LoadedViews::colours unless needs.colours_one_view_at_a_time. Throws InputError.
+  virtual RgbImage LoadColours(const LoadedViews& loaded, size_t i) const = 0;
 };
 
 }  // namespace sacfuse
