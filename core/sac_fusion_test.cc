@@ -1,6 +1,7 @@
 // SAC on synthetic blocks whose answers are known by construction (see sac_test_scene.h).
 #include "core/sac_fusion.h"
 
+#include <mutex>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -182,6 +183,53 @@ TEST(SacFusionTest, DeterministicAcrossThreadCounts) {
       ASSERT_EQ(runs[0][i].view_index, runs[1][i].view_index);
     }
   }
+}
+
+// Colours given one view at a time (FusionNeeds::colours_one_view_at_a_time): each point has its own view's
+// colour, every view's colours are asked once, in order; a loading error reaches the caller.
+class SolidColours : public ViewColours {
+ public:
+  RgbImage Load(size_t i) const override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    asked_.push_back(i);
+    if (i == fail_at_) throw InputError("view " + std::to_string(i) + ".jpg", "cannot decode");
+    return RgbImage(3, 2, 3, static_cast<uint8_t>(10 + 20 * i));
+  }
+  std::vector<size_t> asked() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return asked_;
+  }
+  size_t fail_at_ = ~size_t{0};
+
+ private:
+  mutable std::mutex mutex_;
+  mutable std::vector<size_t> asked_;
+};
+
+TEST(SacFusionTest, ColoursLoadedOneViewAtATimeColourThatViewsPoints) {
+  SyntheticBlock block;
+  for (int i = 0; i < 3; ++i) {
+    const View v = NadirView(i, kEast + 6.0 * i, kNorth, 500.0);
+    block.Add(v, PlaneDepth(v));
+  }
+  const auto views = block.SacViews();
+  SolidColours colours;
+  CollectingSink sink;
+  RunSacFusion(views, TestOptions(), sink, {}, {}, &colours);
+  ASSERT_FALSE(sink.points().empty());
+  std::set<uint32_t> seen;
+  for (const FusedPoint& p : sink.points()) {
+    const auto c = static_cast<uint8_t>(10 + 20 * p.view_index);
+    ASSERT_EQ(p.rgb, (std::array<uint8_t, 3>{c, c, c})) << "view " << p.view_index;
+    seen.insert(p.view_index);
+  }
+  EXPECT_GT(seen.size(), 1u);
+  EXPECT_EQ(colours.asked(), (std::vector<size_t>{0, 1, 2}));
+
+  SolidColours failing;
+  failing.fail_at_ = 2;
+  CollectingSink ignored;
+  EXPECT_THROW(RunSacFusion(views, TestOptions(), ignored, {}, {}, &failing), InputError);
 }
 
 TEST(SacFusionTest, DenseStrategyWithoutConsistencyGraphsIsAClearError) {

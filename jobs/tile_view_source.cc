@@ -75,7 +75,7 @@ std::unique_ptr<LoadedViews> TileViewSource::Load(const FusionNeeds& needs) cons
     if (needs.superpixels) {
       out->superpixels[i] = LoadWindowSuperpixels(view, size, tw.window, cache_dir_, cluster_cache_);
     }
-    if (!needs.colours_one_view_at_a_time) out->colours[i] = LoadWindowColours(view, tw.window, cache_dir_);
+    if (!needs.colours_one_view_at_a_time) out->colours[i] = LoadColours(*out, i);
     out->AddView(tw.view, view, size, tw.window, needs, i);
   }
   out->load_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
