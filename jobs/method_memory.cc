@@ -6,14 +6,16 @@ namespace sacfuse {
 namespace {
 
 constexpr double kTsdfVoxelBytesPerPixelAt4Gsd = 50.0;  // voxel 1 GSD, truncation 4 GSD (measured, see .h)
+constexpr uint64_t kComparisonBytesPerPixel = 8;         // colours with the views and per-pixel state (see .h)
 
 }  // namespace
 
 uint64_t MethodExtraBytesPerDepthPixel(const FusionOptions& fusion) {
-  if (fusion.method != FusionMethodKind::kTsdf) return 0;
+  if (fusion.method == FusionMethodKind::kSac) return 0;
+  if (fusion.method != FusionMethodKind::kTsdf) return kComparisonBytesPerPixel;
   const double voxel = fusion.tsdf.voxel_size_gsd;
   const double scale = (fusion.tsdf.truncation_gsd / 4.0) / (voxel * voxel * voxel);
-  return static_cast<uint64_t>(std::ceil(kTsdfVoxelBytesPerPixelAt4Gsd * scale));
+  return kComparisonBytesPerPixel + static_cast<uint64_t>(std::ceil(kTsdfVoxelBytesPerPixelAt4Gsd * scale));
 }
 
 uint64_t MethodTileBytes(const PlannedTile& tile, const FusionOptions& fusion) {

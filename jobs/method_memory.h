@@ -1,9 +1,10 @@
 #pragma once
-// Memory of the comparison methods beyond what tiles/memory_model.h estimates for SAC per depth pixel (20 B/px in
-// a tile; that covers depth, colours, the per-pixel methods' marks and the computed normals of
-// disparity_normal): tsdf also holds its voxel grid, whose size follows the surface seen (about one band of
-// 2 truncation / voxel voxels per voxel column), measured at ~50 B per depth pixel with voxel 1 GSD and
-// truncation 4 GSD on the tiny and small blocks; it scales with truncation / voxel^3 (defaults: ~100 B/px).
+// Memory of the comparison methods beyond what tiles/memory_model.h estimates for SAC per depth pixel (12 B/px in
+// a tile). They hold every view's colours with the views (3) and per-pixel marks or the computed normals of
+// disparity_normal: 8 more, so 20 B/px as measured before SAC's labels and colours shrank. tsdf also holds its
+// voxel grid, whose size follows the surface seen (about one band of 2 truncation / voxel voxels per voxel column),
+// measured at ~50 B per depth pixel with voxel 1 GSD and truncation 4 GSD on the tiny and small blocks; it scales
+// with truncation / voxel^3 (defaults: ~100 B/px).
 #include <cstdint>
 
 #include "config/job_config.h"
@@ -11,7 +12,7 @@
 
 namespace sacfuse {
 
-// Extra bytes per depth pixel of fusion.method (0 for all but tsdf).
+// Extra bytes per depth pixel of fusion.method (0 for SAC).
 uint64_t MethodExtraBytesPerDepthPixel(const FusionOptions& fusion);
 // A tile's estimate for fusion.method: tile.memory_bytes plus the extra bytes of its window pixels.
 uint64_t MethodTileBytes(const PlannedTile& tile, const FusionOptions& fusion);
