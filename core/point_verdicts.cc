@@ -125,8 +125,8 @@ PointVerdicts::PointVerdicts(const std::vector<SacView>& views, std::vector<std:
                                   std::to_string(kMaxJudgingViews) + " are supported");
     }
     for (size_t k = 0; k < neighbors_[v].size(); ++k) neighbor_slot_[v][neighbors_[v][k]] = static_cast<int>(k);
-    // Value-initialised: every pixel starts "not judged" (0).
-    memo_[v].reset(new std::atomic<uint8_t>[views[v].depth->num_pixels()]());
+    // Value-initialised: every pixel starts "not judged" (0). Two pixels per byte.
+    memo_[v].reset(new std::atomic<uint8_t>[(views[v].depth->num_pixels() + 1) / 2]());
   }
   ceilings_.resize(views.size());
   if (options_.free_space_min_views > 0) {
@@ -147,12 +147,15 @@ DepthCeiling::DepthCeiling(const DepthMap& depth)
 }
 
 PointVerdict PointVerdicts::At(uint32_t view, int row, int col) const {
-  std::atomic<uint8_t>& slot = memo_[view][static_cast<size_t>(row) * views_[view].depth->width + col];
-  const uint8_t known = slot.load(std::memory_order_relaxed);
+  const size_t pixel = static_cast<size_t>(row) * views_[view].depth->width + col;
+  std::atomic<uint8_t>& slot = memo_[view][pixel / 2];
+  const int shift = (pixel % 2) * 4;
+  const uint8_t known = (slot.load(std::memory_order_relaxed) >> shift) & 0xF;
   if (known != 0) return static_cast<PointVerdict>(known - 1);
-  // Two threads may judge the same pixel at once; both store the same value.
+  // Two threads may judge the same pixel at once; both set the same bits. The byte's other pixel is left as it is
+  // (its bits are only ever set, from 0, to its one verdict).
   const PointVerdict verdict = Judge(view, row, col);
-  slot.store(static_cast<uint8_t>(verdict) + 1, std::memory_order_relaxed);
+  slot.fetch_or(static_cast<uint8_t>((static_cast<uint8_t>(verdict) + 1) << shift), std::memory_order_relaxed);
   return verdict;
 }
 
