@@ -16,6 +16,7 @@
 #include "io/las_reader.h"
 #include "io/las_writer.h"
 #include "io/laz_chunk_table.h"
+#include "io/laz_chunk_writer.h"
 #include "tests/support/las_points.h"
 #include "tests/support/test_support.h"
 
@@ -126,7 +127,9 @@ TEST(LazWriterTest, EveryFormatDecodesToItsLasTwin) {
       EXPECT_EQ(lf::GetU16(&b[header_size + 18]), 22204);
       const uint64_t table = lf::GetU64(&b[lf::GetU32(&b[lf::kOffPointOffset])]);
       EXPECT_EQ(lf::GetU32(&b[table + 4]), n == 0 ? 0u : 1u);  // chunks
-      if (n == 3000) EXPECT_LT(b.size() * 2, fs::file_size(las));
+      if (n == 3000) {
+        EXPECT_LT(b.size() * 2, fs::file_size(las));
+      }
     }
   }
 }
@@ -170,19 +173,25 @@ TEST(LazWriterTest, MultiChunkFileWithEvlrsAndFusedPoints) {
   }
 }
 
-// Chunks are compressed in parallel batches (LazChunkWriter::kBatchChunks): more than one batch, the same bytes on 1
-// and 2 threads, every chunk of 50,000 points but the last, and the points of the LAS twin.
+// Chunks are compressed in parallel batches of one chunk per thread (LazChunkWriter::batch_chunks): ten batches on 1
+// thread, five on 2, the same bytes, every chunk of 50,000 points but the last, and the points of the LAS twin.
 TEST(LazWriterTest, ParallelBatchesGiveTheSameFileForAnyThreadCount) {
   TempDir dir;
-  const size_t n = 9 * 50000 + 7;  // two batches of chunks, the last chunk 7 points
+  const size_t n = 9 * 50000 + 7;  // ten chunks, the last 7 points
   const std::vector<LasPoint> pts = MakePoints(6, n, 4);
   {
     tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    EXPECT_EQ(LazChunkWriter(6, lf::BaseRecordSize(6)).batch_chunks(), 1u);
     Write(dir / "one.laz", 4, 6, pts, true);
   }
   {
     tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+    EXPECT_EQ(LazChunkWriter(6, lf::BaseRecordSize(6)).batch_chunks(), 2u);
     Write(dir / "two.laz", 4, 6, pts, true);
+  }
+  {
+    tbb::global_control many(tbb::global_control::max_allowed_parallelism, 64);
+    EXPECT_EQ(LazChunkWriter(6, lf::BaseRecordSize(6)).batch_chunks(), LazChunkWriter::kMaxBatchChunks);
   }
   Write(dir / "twin.las", 4, 6, pts, false);
   std::vector<uint8_t> a = ReadBytes(dir / "one.laz");
