@@ -28,11 +28,17 @@ SuperpixelLabels::SuperpixelLabels(int width, int height, const std::vector<int3
       band_base_[b] = static_cast<uint32_t>(*lo);
     }
   }
+  if (!banded_) band_base_.clear();
+  if (BuildPalettes(labels)) {
+    storage_ = Storage::kPalette;
+    return;
+  }
   if (!banded_) {
-    band_base_.clear();
+    storage_ = Storage::kWide;
     wide_ = labels;
     return;
   }
+  storage_ = Storage::kBanded;
   offsets_.resize(labels.size());
   for (int r = 0; r < height; ++r) {
     const uint32_t base = band_base_[static_cast<size_t>(r / kBandRows)];
@@ -43,14 +49,55 @@ SuperpixelLabels::SuperpixelLabels(int width, int height, const std::vector<int3
   }
 }
 
-void SuperpixelLabels::CopyRow(int row, int32_t* out) const {
-  if (!banded_) {
-    std::copy_n(wide_row(row), width_, out);
-    return;
+bool SuperpixelLabels::BuildPalettes(const std::vector<int32_t>& labels) {
+  blocks_per_row_ = (static_cast<size_t>(width_) + kBlockPx - 1) / kBlockPx;
+  const size_t block_rows = (static_cast<size_t>(height_) + kBlockPx - 1) / kBlockPx;
+  std::vector<uint8_t> indices((size() + 1) / 2, 0);
+  std::vector<uint32_t> palette_begin(blocks_per_row_ * block_rows);
+  std::vector<int32_t> palette;
+  for (size_t br = 0; br < block_rows; ++br) {
+    for (size_t bc = 0; bc < blocks_per_row_; ++bc) {
+      const uint32_t begin = static_cast<uint32_t>(palette.size());
+      palette_begin[br * blocks_per_row_ + bc] = begin;
+      const int row_end = std::min(height_, static_cast<int>(br + 1) * kBlockPx);
+      const int col_end = std::min(width_, static_cast<int>(bc + 1) * kBlockPx);
+      for (int r = static_cast<int>(br) * kBlockPx; r < row_end; ++r) {
+        for (int c = static_cast<int>(bc) * kBlockPx; c < col_end; ++c) {
+          const size_t i = static_cast<size_t>(r) * static_cast<size_t>(width_) + static_cast<size_t>(c);
+          const auto first = palette.begin() + begin;
+          const auto found = std::find(first, palette.end(), labels[i]);
+          const size_t index = static_cast<size_t>(found - first);
+          if (found == palette.end()) {
+            if (index == kMaxPaletteLabels) return false;
+            palette.push_back(labels[i]);
+          }
+          indices[i / 2] = static_cast<uint8_t>(indices[i / 2] | (index << ((i % 2) * 4)));
+        }
+      }
+    }
   }
-  const uint32_t base = band_base_[static_cast<size_t>(row / kBandRows)];
-  const uint16_t* offsets = offsets_row(row);
-  for (int c = 0; c < width_; ++c) out[c] = static_cast<int32_t>(base + offsets[c]);
+  indices_ = std::move(indices);
+  palette_begin_ = std::move(palette_begin);
+  palette.shrink_to_fit();
+  palette_ = std::move(palette);
+  return true;
+}
+
+void SuperpixelLabels::CopyRow(int row, int32_t* out) const {
+  switch (storage_) {
+    case Storage::kPalette:
+      for (int c = 0; c < width_; ++c) out[c] = at(row, c);
+      return;
+    case Storage::kBanded: {
+      const uint32_t base = band_base_[static_cast<size_t>(row / kBandRows)];
+      const uint16_t* offsets = offsets_.data() + static_cast<size_t>(row) * width_;
+      for (int c = 0; c < width_; ++c) out[c] = static_cast<int32_t>(base + offsets[c]);
+      return;
+    }
+    case Storage::kWide:
+      std::copy_n(wide_.data() + static_cast<size_t>(row) * width_, width_, out);
+      return;
+  }
 }
 
 std::vector<int32_t> SuperpixelLabels::ToVector() const {

@@ -16,11 +16,12 @@ std::vector<int32_t> BandLikeLabels(int width, int height, int32_t per_row) {
   return labels;
 }
 
-TEST(SuperpixelLabelsTest, BandedStorageGivesBackEveryLabelAtTwoBytesPerPixel) {
+TEST(SuperpixelLabelsTest, BandedStorageWhereBlocksMeetTooManyLabels) {
   // 150 rows: three bands (64, 64, 22 rows); the last band's base is 128 * 500 = 64,000, beyond a u16.
   const std::vector<int32_t> labels = BandLikeLabels(37, 150, 500);
   const SuperpixelLabels stored(37, 150, labels);
   ASSERT_TRUE(stored.banded());
+  EXPECT_FALSE(stored.paletted());  // a 16 x 16 block meets 256 labels here
   EXPECT_EQ(stored.band_base(), (std::vector<uint32_t>{0, 64 * 500, 128 * 500}));
   EXPECT_EQ(stored.bytes(), 37u * 150u * 2u + 3u * 4u);
   for (int r = 0; r < 150; ++r) {
@@ -31,6 +32,51 @@ TEST(SuperpixelLabelsTest, BandedStorageGivesBackEveryLabelAtTwoBytesPerPixel) {
   stored.CopyRow(149, row.data());
   EXPECT_EQ(row[36], 149 * 500 + 36);
   EXPECT_EQ(stored, SuperpixelLabels(37, 150, labels));
+}
+
+// Superpixel-like labels: cells of 12 x 20 pixels with wavy borders, numbered row by row, on a raster whose size is
+// not a multiple of the 16-pixel blocks.
+std::vector<int32_t> CellLabels(int width, int height) {
+  std::vector<int32_t> labels(static_cast<size_t>(width) * height);
+  const int cells_per_row = width / 20 + 2;
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) {
+      const int cr = (r + (c % 7 == 0 ? 3 : 0)) / 12, cc = (c + (r % 5 == 0 ? 4 : 0)) / 20;
+      labels[static_cast<size_t>(r) * width + c] = cr * cells_per_row + cc;
+    }
+  }
+  return labels;
+}
+
+TEST(SuperpixelLabelsTest, PaletteStorageGivesBackEveryLabelAtAboutHalfAByteAPixel) {
+  const int width = 203, height = 157;  // odd: the last pixel has a byte of its own
+  const std::vector<int32_t> labels = CellLabels(width, height);
+  const SuperpixelLabels stored(width, height, labels);
+  ASSERT_TRUE(stored.paletted());
+  ASSERT_TRUE(stored.banded());  // the cache file's layout is still known
+  EXPECT_EQ(stored.band_base(), (std::vector<uint32_t>{0, static_cast<uint32_t>(labels[64 * width]),
+                                                       static_cast<uint32_t>(labels[128 * width])}));
+  for (int r = 0; r < height; ++r) {
+    for (int c = 0; c < width; ++c) {
+      ASSERT_EQ(stored.at(r, c), labels[static_cast<size_t>(r) * width + c]) << r << "," << c;
+    }
+  }
+  EXPECT_EQ(stored.ToVector(), labels);
+  EXPECT_LT(stored.bytes(), stored.size() * 7 / 10);
+  EXPECT_EQ(stored, SuperpixelLabels(width, height, labels));
+  std::vector<int32_t> other = labels;
+  other[static_cast<size_t>(100) * width + 7] += 1;
+  EXPECT_NE(stored, SuperpixelLabels(width, height, other));
+
+  // A block meeting exactly 16 labels keeps its palette; 17 do not (u16 offsets instead).
+  std::vector<int32_t> sixteen(16 * 16);
+  for (size_t i = 0; i < sixteen.size(); ++i) sixteen[i] = static_cast<int32_t>(i % 16);
+  EXPECT_TRUE(SuperpixelLabels(16, 16, sixteen).paletted());
+  sixteen[255] = 16;
+  const SuperpixelLabels seventeen(16, 16, sixteen);
+  EXPECT_FALSE(seventeen.paletted());
+  EXPECT_TRUE(seventeen.banded());
+  EXPECT_EQ(seventeen.ToVector(), sixteen);
 }
 
 TEST(SuperpixelLabelsTest, ABandSpanningMoreThanAU16OrNegativeLabelsKeepInt32) {

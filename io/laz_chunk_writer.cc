@@ -24,7 +24,9 @@ LazChunkWriter::LazChunkWriter(int pdrf, size_t record_length) {
   record_length_ = record_length;
   const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
   const size_t batch_chunks = std::clamp<size_t>(threads, 1, kMaxBatchChunks);
-  for (size_t i = 0; i < batch_chunks; ++i) encoders_.push_back(std::make_unique<laz::ChunkEncoder>(vlr, record_length));
+  for (size_t i = 0; i < batch_chunks; ++i) {
+    encoders_.push_back(std::make_unique<laz::ChunkEncoder>(vlr, record_length));
+  }
 }
 
 LazChunkWriter::~LazChunkWriter() = default;
@@ -39,7 +41,9 @@ LasVlr LazChunkWriter::Vlr() const {
 }
 
 const std::vector<std::vector<uint8_t>>& LazChunkWriter::Chunks(const uint8_t* records, size_t count) {
-  if (count == 0 || count > batch_chunks() * kChunkPoints) throw Error("LAZ: invalid batch of " + std::to_string(count) + " records");
+  if (count == 0 || count > batch_chunks() * kChunkPoints) {
+    throw Error("LAZ: invalid batch of " + std::to_string(count) + " records");
+  }
   const size_t num_chunks = (count + kChunkPoints - 1) / kChunkPoints;
   chunks_.resize(num_chunks);
   tbb::parallel_for(size_t{0}, num_chunks, [&](size_t i) {

@@ -230,7 +230,7 @@ void WriteSuperpixels(const std::string& path, const SuperpixelMap& map, uint64_
     }
   }
 
-  // The file's layout is the in-memory one: banded when SuperpixelLabels could band the labels.
+  // Banded when the labels fit that layout (SuperpixelLabels::banded), else int32.
   const bool banded = map.labels.banded();
   const std::vector<uint32_t>& band_base = map.labels.band_base();
   const auto parent = std::filesystem::path(path).parent_path();
@@ -255,15 +255,18 @@ void WriteSuperpixels(const std::string& path, const SuperpixelMap& map, uint64_
     // Labels row by row, little-endian: u16 offsets from the row's band base, or int32.
     const size_t label_bytes = banded ? 2 : 4;
     std::vector<unsigned char> row(static_cast<size_t>(map.width) * label_bytes);
+    std::vector<int32_t> labels_row(static_cast<size_t>(map.width));
     for (int r = 0; r < map.height; ++r) {
+      map.labels.CopyRow(r, labels_row.data());
+      const uint32_t base = banded ? band_base[static_cast<size_t>(r / kBandRows)] : 0;
       for (int c = 0; c < map.width; ++c) {
         unsigned char* p = row.data() + static_cast<size_t>(c) * label_bytes;
+        const uint32_t value = static_cast<uint32_t>(labels_row[static_cast<size_t>(c)]) - base;
         if (banded) {
-          const uint16_t offset = map.labels.offsets_row(r)[c];
-          p[0] = static_cast<unsigned char>(offset);
-          p[1] = static_cast<unsigned char>(offset >> 8);
+          p[0] = static_cast<unsigned char>(value);
+          p[1] = static_cast<unsigned char>(value >> 8);
         } else {
-          PutU32(p, static_cast<uint32_t>(map.labels.wide_row(r)[c]));
+          PutU32(p, value);
         }
       }
       WriteAll(f, row.data(), row.size(), path, tmp);
