@@ -17,7 +17,8 @@ constexpr uint64_t kGiB = uint64_t{1} << 30;
 // (0.5) + SAC's working memory (nodes, correspondences, labels, emitted points: ~1.5 measured); colours only of
 // the emitting view (FusionNeeds::colours_one_view_at_a_time). Measured ~7 B/px of peak RSS per window pixel on the
 // Dortmund preset at pixel scale 0.25 (800 m tiles, 2026-11-27, with u16 labels and a 1-byte memo; 10.6 B/px with
-// int32 labels and every view's colours); 12 keeps the margin the earlier 20 had over 12.5 measured. The comparison methods add their own (jobs/method_memory.h).
+// int32 labels and every view's colours); 12 keeps the margin the earlier 20 had over 12.5 measured. The comparison
+// methods add their own (jobs/method_memory.h).
 constexpr uint64_t kTileBytesPerWindowPixel = 12;
 // Untiled SAC holds every view whole: per depth pixel as a tile (12), plus the decoded image (3 B per image
 // pixel, a bound: the images are decoded a few at a time). Measured ~10 B/px on aerial-bench Montpellier
