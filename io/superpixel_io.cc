@@ -22,7 +22,7 @@ constexpr char kMagicInt32[8] = {'S', 'A', 'C', 'S', 'P', 'X', '0', '1'};  // in
 constexpr char kMagicBanded[8] = {'S', 'A', 'C', 'S', 'P', 'X', '0', '2'};  // u16 offsets in row bands
 constexpr uint64_t kHeaderBytes = 32;
 constexpr uint64_t kClusterBytes = 20;
-// The banded layout is SuperpixelLabels' storage (core/superpixel_labels.h).
+// The bands are SuperpixelLabels' (core/superpixel_labels.h: banded(), band_base()).
 constexpr int kBandRows = SuperpixelLabels::kBandRows;
 
 uint64_t NumBands(uint64_t height) { return (height + kBandRows - 1) / kBandRows; }
