@@ -226,7 +226,7 @@ void LasWriter::Impl::ValidateOptions() {
                      options.vlrs.end());
   if (options.compressed) {
     laz = std::make_unique<LazChunkWriter>(pdrf, record_length);
-    buffer_records = laz->batch_chunks() * LazChunkWriter::kChunkPoints;
+    buffer_records = LazChunkWriter::kBatchChunks * LazChunkWriter::kChunkPoints;
     options.vlrs.push_back(laz->Vlr());
   }
   for (const LasVlr& vlr : options.vlrs) {

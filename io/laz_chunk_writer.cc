@@ -23,8 +23,8 @@ LazChunkWriter::LazChunkWriter(int pdrf, size_t record_length) {
   vlr_payload_ = vlr.Serialize();
   record_length_ = record_length;
   const size_t threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
-  const size_t batch_chunks = std::clamp<size_t>(threads, 1, kMaxBatchChunks);
-  for (size_t i = 0; i < batch_chunks; ++i) {
+  const size_t encoders = std::clamp<size_t>(threads, 1, kBatchChunks);
+  for (size_t i = 0; i < encoders; ++i) {
     encoders_.push_back(std::make_unique<laz::ChunkEncoder>(vlr, record_length));
   }
 }
@@ -41,16 +41,20 @@ LasVlr LazChunkWriter::Vlr() const {
 }
 
 const std::vector<std::vector<uint8_t>>& LazChunkWriter::Chunks(const uint8_t* records, size_t count) {
-  if (count == 0 || count > batch_chunks() * kChunkPoints) {
+  if (count == 0 || count > kBatchChunks * kChunkPoints) {
     throw Error("LAZ: invalid batch of " + std::to_string(count) + " records");
   }
   const size_t num_chunks = (count + kChunkPoints - 1) / kChunkPoints;
   chunks_.resize(num_chunks);
-  tbb::parallel_for(size_t{0}, num_chunks, [&](size_t i) {
-    const size_t first = i * kChunkPoints;
-    chunks_[i].clear();
-    encoders_[i]->Encode(records + first * record_length_, std::min(kChunkPoints, count - first), &chunks_[i]);
-  });
+  // In rounds of one chunk per encoder.
+  for (size_t round = 0; round < num_chunks; round += encoders_.size()) {
+    tbb::parallel_for(size_t{0}, std::min(encoders_.size(), num_chunks - round), [&](size_t k) {
+      const size_t i = round + k;
+      const size_t first = i * kChunkPoints;
+      chunks_[i].clear();
+      encoders_[k]->Encode(records + first * record_length_, std::min(kChunkPoints, count - first), &chunks_[i]);
+    });
+  }
   for (size_t i = 0; i < num_chunks; ++i) {
     if (chunks_[i].size() > std::numeric_limits<uint32_t>::max()) throw Error("LAZ chunk larger than 4 GiB");
     const size_t points = std::min(kChunkPoints, count - i * kChunkPoints);

@@ -24,14 +24,16 @@ class LazChunkWriter {
   LazChunkWriter(int pdrf, size_t record_length);
   ~LazChunkWriter();
   LasVlr Vlr() const;
-  // Chunks compressed at once, in parallel (each with its own encoder): one per thread TBB may use when the writer
-  // is made (tbb::global_control), at most kMaxBatchChunks. LasWriter buffers this many chunks of records before it
-  // writes: each chunk held costs its records and an encoder's models (~2.4 MB at 50,000 points of 34 bytes; with 8
-  // on 2 threads the writer was 33 MB of aerial Montpellier's 200 MB heap, issue 13). Chunks are independent in LAZ,
-  // so the file is the same for any batch size and thread count.
-  static constexpr size_t kMaxBatchChunks = 8;
-  size_t batch_chunks() const { return encoders_.size(); }
-  // Compresses `count` (1..batch_chunks() x kChunkPoints) records into consecutive chunks of kChunkPoints records
+  // Chunks of records LasWriter buffers before it writes them. A constant: the order of the points of a merged file
+  // (LasWriter::AppendLaz copies stored chunks ahead of the records still buffered) depends on it, so it must not
+  // follow the thread count.
+  static constexpr size_t kBatchChunks = 8;
+  // Chunks of a batch compressed at once, in parallel, each with its own encoder: one per thread TBB may use when
+  // the writer is made (tbb::global_control), at most kBatchChunks. Each encoder holds ~1.5 MB of models (8 were
+  // 14 MB of aerial Montpellier's 200 MB heap on 2 threads, issue 13). Chunks are independent in LAZ, so the file is
+  // the same for any number of encoders.
+  size_t parallel_chunks() const { return encoders_.size(); }
+  // Compresses `count` (1..kBatchChunks x kChunkPoints) records into consecutive chunks of kChunkPoints records
   // (the last may be shorter); the chunks' bytes, in order, stay valid until the next call.
   const std::vector<std::vector<uint8_t>>& Chunks(const uint8_t* records, size_t count);
   // Records a chunk of kChunkPoints records compressed elsewhere with this writer's VLR (copied from another
