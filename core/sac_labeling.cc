@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/cluster_adjacency.h"
 #include "core/mrf.h"
 #include "core/sac_tolerance.h"
 

@@ -74,10 +74,6 @@ SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, c
 // of ComputeSuperpixels; the YAML keys superpixels.* are checked by config/option_table.cc).
 void ValidateSuperpixelOptions(const SuperpixelOptions& options);
 
-// Neighbouring clusters (4-connectivity): result[i] lists the clusters sharing an edge with cluster i, sorted,
-// without duplicates (symmetric: j in result[i] <=> i in result[j]). result.size() == map.clusters.size().
-std::vector<std::vector<uint32_t>> ClusterAdjacency(const SuperpixelMap& map);
-
 // Fingerprint of everything that changes the segmentation (options and algorithm version); stable across runs
 // and platforms (FNV-1a over a fixed little-endian encoding). Cache files store it; it does not cover the
 // input rasters themselves.

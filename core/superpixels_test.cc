@@ -14,6 +14,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "core/cluster_adjacency.h"
 #include "core/error.h"
 #include "core/slic_fast.h"
 #include "core/superpixels_test_util.h"
