@@ -71,6 +71,7 @@ inline DepthLookup LookupDepthInCamera(const SacView& view, const Eigen::Vector3
   if (out.inside) out.stored_depth_m = view.depth->at(out.row, out.col);
   return out;
 }
+// The same for a world point.
 inline DepthLookup LookupDepth(const SacView& view, const Eigen::Vector3d& point_in_world) {
   return LookupDepthInCamera(view, view.PointInCamera(point_in_world));
 }
