@@ -46,15 +46,15 @@ const std::vector<std::vector<uint8_t>>& LazChunkWriter::Chunks(const uint8_t* r
   }
   const size_t num_chunks = (count + kChunkPoints - 1) / kChunkPoints;
   chunks_.resize(num_chunks);
-  // In rounds of one chunk per encoder.
-  for (size_t round = 0; round < num_chunks; round += encoders_.size()) {
-    tbb::parallel_for(size_t{0}, std::min(encoders_.size(), num_chunks - round), [&](size_t k) {
-      const size_t i = round + k;
+  // Encoder k codes chunks k, k + E, k + 2E, ... (E encoders): each chunk is coded by one encoder alone.
+  const size_t num_encoders = std::min(encoders_.size(), num_chunks);
+  tbb::parallel_for(size_t{0}, num_encoders, [&](size_t k) {
+    for (size_t i = k; i < num_chunks; i += num_encoders) {
       const size_t first = i * kChunkPoints;
       chunks_[i].clear();
       encoders_[k]->Encode(records + first * record_length_, std::min(kChunkPoints, count - first), &chunks_[i]);
-    });
-  }
+    }
+  });
   for (size_t i = 0; i < num_chunks; ++i) {
     if (chunks_[i].size() > std::numeric_limits<uint32_t>::max()) throw Error("LAZ chunk larger than 4 GiB");
     const size_t points = std::min(kChunkPoints, count - i * kChunkPoints);
