@@ -14,7 +14,9 @@ is the distance from the other view's back-projected depth there along that view
 map, differences over +-3 pixels). Residuals over 2 m are left out, the rest weighed by Huber (0.3 m). The unknowns
 are a small rotation w_k about the centroid of view k's samples and a translation t_k per view (X' = X + w_k x (X -
 P_k) + t_k); a weak prior keeps each small (rotations scaled by 50 m), and the mean rotation and translation over
-all views are held at zero, so the block's datum does not move. Gauss-Newton, ITERS times, re-projecting each time.
+all views are held at zero, so the block's datum does not move. Damped Gauss-Newton (Levenberg-Marquardt, the
+diagonal doubled: without it the poses drifted on a narrow-angle block whose rotations and translations the data
+hardly separate), ITERS times, re-projecting each time.
 Measured in README "SAC fusion: the choices" (per-view co-registration); the pipeline does not do this yet.
 Environment: ITERS (8), STEP (6 px).
 """
@@ -26,7 +28,7 @@ import numpy as np
 ITERS = int(os.environ.get("ITERS", "8"))
 STEP = int(os.environ.get("STEP", "6"))
 HUBER_M, MAX_RESIDUAL_M, MAX_ANGLE_DEG = 0.3, 2.0, 65.0
-PRIOR, ROTATION_SCALE_M, MEAN_WEIGHT = 1.0, 50.0, 1e9
+PRIOR, ROTATION_SCALE_M, MEAN_WEIGHT, DAMPING = 1.0, 50.0, 1e9, 1.0
 
 
 def read_depth(path):
@@ -162,6 +164,7 @@ def solve(views, pairs):
         weighted_ss += float(np.sum(wgt[:, 0] * r * r))
     scale = np.tile([ROTATION_SCALE_M] * 3 + [1.0] * 3, n)
     normal += PRIOR * np.diag(scale ** 2)
+    normal += DAMPING * np.diag(np.diag(normal))  # Levenberg-Marquardt: small steps where the data say little
     mean = np.tile(np.eye(6), (1, n)) * scale[None, :]
     normal += MEAN_WEIGHT * mean.T @ mean
     return -np.linalg.solve(normal, gradient), total, np.sqrt(weighted_ss / max(total, 1))
