@@ -8,6 +8,7 @@
 
 #include "config/fusion_method_kind.h"
 #include "core/consistency_fusion.h"
+#include "core/coregistration.h"
 #include "core/disparity_normal_fusion.h"
 #include "core/multiray_fusion.h"
 #include "core/sac_options.h"
@@ -75,6 +76,7 @@ struct JobConfig {
   std::string crs;
   InputOptions input;
   OutputOptions output;
+  CoregistrationOptions coregistration;  // YAML: coregistration.<field>; every method (core/coregistration.h)
   FusionOptions fusion;
   TilingOptions tiling;    // YAML: tiling.<field>; tile_size_m = 0 runs untiled
   ResourceOptions resources;

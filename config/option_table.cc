@@ -70,6 +70,23 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "LAS version: 1.4 (point format 7) | 1.2 (format 3)");
   s.AddDouble("output.scale_m", &c->output.scale_m, Affects("m", Closed(1e-6, 1.0)),
               "LAS coordinate quantum, metres; 10^k x {1, 0.5, 0.25}");
+  CoregistrationOptions& co = c->coregistration;  // every method: a block-level stage before tiling
+  s.AddBool("coregistration.enabled", &co.enabled, Affects("-", {}),
+            "correct every view's pose against its neighbours' depth maps before fusion (core/coregistration.h)");
+  s.AddInt("coregistration.max_pixels_per_view", &co.max_pixels_per_view, Affects("px", Closed(1000, 100000000)),
+           "depth maps are decimated (every k-th pixel, k odd) to at most this many pixels; 1000-1e8");
+  s.AddInt("coregistration.samples_per_view", &co.samples_per_view, Affects("px", Closed(100, 100000000)),
+           "samples of each view projected into its neighbours, at most; 100-1e8");
+  s.AddInt("coregistration.iterations", &co.iterations, Affects("steps", Closed(1, 50)),
+           "damped Gauss-Newton steps, each projecting again; 1-50");
+  s.AddInt("coregistration.max_neighbor_views", &co.max_neighbor_views, Affects("views", Closed(1, 256)),
+           "views each view is compared with (footprint overlap x cos angle, best first); 1-256");
+  s.AddDouble("coregistration.max_view_angle_deg", &co.max_view_angle_deg, Affects("deg", Closed(0, 180)),
+              "views whose viewing directions differ by more are not compared, degrees; 0-180");
+  s.AddDouble("coregistration.huber_gsd", &co.huber_gsd, Affects("GSD", Above(0)),
+              "Huber threshold of the point-to-plane residuals, local GSDs; > 0");
+  s.AddDouble("coregistration.max_residual_gsd", &co.max_residual_gsd, Affects("GSD", Above(0)),
+              "residuals larger than this are left out, local GSDs; > 0");
   s.AddEnum("fusion.method", &c->fusion.method, MethodChoices(), Affects("-", {}),
             "fusion method: sac (Select-and-Combine) | union (every valid depth pixel: the 'before fusion' baseline) "
             "| the paper's comparison methods: consistency ([15]: occluded and redundant depths removed) | "

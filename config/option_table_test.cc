@@ -183,12 +183,19 @@ TEST(OptionTableTest, FusionMethodIsParsedOnceFromOneNameTable) {
   }
 }
 
-// The resume hash of existing runs must not change: the text main wrote before the table (captured from its
-// --print-defaults and its prefix list) for the default config.
+// The resume hash of existing runs must not change unless a change of the points is meant: the text main wrote
+// before the table (captured from its --print-defaults and its prefix list) for the default config, with the keys
+// added since.
 TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
   const std::string expected =
       "crs: \"\"\ninput.format: \"colmap\"\ninput.path: \"\"\ninput.depth_type: \"geometric\"\ninput.cameras: \"\"\n"
-      "input.depth_kind: \"z\"\noutput.las_version: \"1.4\"\noutput.scale_m: 0.001\nfusion.method: \"sac\"\n"
+      "input.depth_kind: \"z\"\noutput.las_version: \"1.4\"\noutput.scale_m: 0.001\n"
+      // coregistration.* (twentieth session): a new stage that changes the points, so tiled runs of older
+      // versions are recomputed, not resumed.
+      "coregistration.enabled: true\ncoregistration.max_pixels_per_view: 250000\n"
+      "coregistration.samples_per_view: 2000\ncoregistration.iterations: 20\n"
+      "coregistration.max_neighbor_views: 12\ncoregistration.max_view_angle_deg: 65.0\n"
+      "coregistration.huber_gsd: 1.2\ncoregistration.max_residual_gsd: 8.0\nfusion.method: \"sac\"\n"
       "fusion.max_neighbor_views: 10\nfusion.max_view_angle_deg: 65.0\nfusion.min_footprint_overlap: 0.05\n"
       "fusion.correspondence: \"reprojection\"\nfusion.depth_tolerance_gsd: 3.0\nfusion.depth_tolerance_rel: 0.0\n"
       "fusion.proximity_radius_m: 0.0\nfusion.tau_m: 2.0\nfusion.netlets: \"node\"\nfusion.unary: \"quality\"\n"

@@ -18,6 +18,7 @@ std::string EvalJsonPath(const JobConfig& config) { return InOutputDir(config, "
 std::string LogPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.log"); }
 std::string RunStatePath(const JobConfig& config) { return InOutputDir(config, "run_state.json"); }
 std::string PlanJsonPath(const JobConfig& config) { return InOutputDir(config, "plan.json"); }
+std::string CoregistrationPath(const JobConfig& config) { return InOutputDir(config, "coregistration.json"); }
 std::string TilesDir(const JobConfig& config) { return InOutputDir(config, "tiles"); }
 std::string ReportDir(const JobConfig& config) { return InOutputDir(config, "report"); }
 

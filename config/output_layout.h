@@ -8,6 +8,8 @@
 //   DIR/sacfuse.log             the log
 //   DIR/run_state.json          running | failed | succeeded, of the last `sacfuse run` (jobs/run_state.h)
 //   DIR/plan.json               the tile plan shared by every worker (tiles/tile_plan.h)
+//   DIR/coregistration.json     per-view pose corrections, reused while inputs and options are unchanged
+//                               (jobs/coregistered_block.h)
 //   DIR/tiles/                  per-tile state of tiled runs (tiles/tile_manifest.h, tiles/tile_marker.h)
 //   DIR/report/                 the HTML report (report/report_writer.h)
 //   DIR/superpixels/            superpixel and colour caches (or fusion.superpixel_cache_dir; jobs/superpixel_cache.h)
@@ -24,6 +26,7 @@ std::string EvalJsonPath(const JobConfig& config);
 std::string LogPath(const JobConfig& config);
 std::string RunStatePath(const JobConfig& config);
 std::string PlanJsonPath(const JobConfig& config);
+std::string CoregistrationPath(const JobConfig& config);
 std::string TilesDir(const JobConfig& config);
 std::string ReportDir(const JobConfig& config);  // the default report folder (`sacfuse report --out` may differ)
 

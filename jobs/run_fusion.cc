@@ -19,6 +19,7 @@
 #include "io/view_identity.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/block_view_source.h"
+#include "jobs/coregistered_block.h"
 #include "jobs/fuse_views.h"
 #include "jobs/fusion_methods.h"
 #include "jobs/job_report.h"
@@ -98,9 +99,16 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                             {"memory", {{"budget_gib", s.memory_budget_gib}, {"estimate_gib", s.memory_estimate_gib}}},
                             {"tiling_decision", {{"tile_size_m", s.tile_size_m}, {"reason", s.tiling_reason}}},
                             {"stage_wall_seconds",
-                             {{"superpixels", s.superpixel_seconds}, {"tiles", s.tiles_seconds},
-                              {"merge", s.merge_seconds}}},
+                             {{"coregistration", s.coregistration.seconds}, {"superpixels", s.superpixel_seconds},
+                              {"tiles", s.tiles_seconds}, {"merge", s.merge_seconds}}},
                             {"views", views}};
+  if (s.coregistration.enabled) {
+    const CoregistrationOutcome& c = s.coregistration;
+    j["coregistration"] = {{"file", CoregistrationPath(config)}, {"reused", c.reused}, {"seconds", c.seconds},
+                           {"median_rotation_deg", c.median_rotation_deg}, {"max_rotation_deg", c.max_rotation_deg},
+                           {"median_shift_m", c.median_shift_m}, {"max_shift_m", c.max_shift_m},
+                           {"median_rms_before_m", c.rms_before_m}, {"median_rms_after_m", c.rms_after_m}};
+  }
   if (s.method == "sac") j["sac"] = SacSectionJson(s.fusion, s.superpixels_computed);
   if (s.tiles_run > 0) {
     nlohmann::json failed = nlohmann::json::array();
@@ -242,12 +250,13 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   summary.report_path = RunReportPath(config);
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
-  const std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse", config.crs);
+  std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse", config.crs);
+  TilingDecision decision;
+  config = ResolveTiling(given, *block, &decision);
+  const ThreadLimit thread_limit(EffectiveThreads(config));
+  block = WithCoregisteredPoses(config, std::move(block), &summary.coregistration);
   const DepthBlock& input = *block;
   const auto& views = input.views();
-  TilingDecision decision;
-  config = ResolveTiling(given, input, &decision);
-  const ThreadLimit thread_limit(EffectiveThreads(config));
   summary.threads = EffectiveThreads(config);
   summary.tile_size_m = config.tiling.tile_size_m;
   summary.tiling_reason = decision.reason;

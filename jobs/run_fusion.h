@@ -11,6 +11,7 @@
 #include "config/job_config.h"
 #include "core/fusion_stats.h"
 #include "core/sac_fusion.h"
+#include "jobs/coregistered_block.h"
 #include "io/las_writer.h"
 
 namespace sacfuse {
@@ -43,6 +44,7 @@ struct RunSummary {
   double memory_budget_gib = 0.0;  // resources.memory_gb
   double memory_estimate_gib = 0.0;  // untiled: the whole block; tiled: the largest tile
   int threads = 0;
+  CoregistrationOutcome coregistration;  // the pose corrections before fusion (jobs/coregistered_block.h)
   double superpixel_seconds = 0.0;  // the superpixel (and colour cache) pass; untiled: all loading
   double tiles_seconds = 0.0;       // tiled: the tile stage
   double merge_seconds = 0.0;       // tiled: merging the tiles into fused.las

@@ -6,6 +6,7 @@
 #include "config/result_settings.h"
 #include "core/error.h"
 #include "jobs/auto_tiling.h"
+#include "jobs/coregistered_block.h"
 #include "jobs/las_options.h"
 #include "jobs/open_input.h"
 #include "jobs/thread_limit.h"
@@ -26,15 +27,17 @@ std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* r
     throw ConfigError("not a tiled run: tiling.tile_size_m = 0 and the whole block fits in resources.memory_gb, so "
                       "it runs untiled (`sacfuse run`); set tiling.tile_size_m > 0 to cut it into tiles");
   }
-  return input;
+  const ThreadLimit thread_limit(EffectiveThreads(*resolved));
+  return WithCoregisteredPoses(*resolved, std::move(input));
 }
 
 }  // namespace
 
 TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
   ValidateJobConfig(given);
-  const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan", given.crs);
+  std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(given.input, "plan", given.crs);
   const JobConfig config = ResolveTiling(given, *input);
+  input = WithCoregisteredPoses(config, std::move(input));
   return SharedTilePlan(config, *input, IdentifyBlock(*input).views, plan_path);
 }
 

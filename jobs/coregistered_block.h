@@ -1,0 +1,64 @@
+#pragma once
+// The block a job fuses: its input (jobs/open_input.h) with every view's pose corrected by co-registration
+// (core/coregistration.h) when coregistration.enabled. A block-level stage before tiling, so a tiled run and an
+// untiled one fuse the same poses, and every tile worker the poses its plan was made with.
+//
+// DIR/coregistration.json keeps the corrected poses with what they were made from: the digest of the views'
+// identities as read (io/view_identity.h: depth map, image, camera) and the coregistration.* options. A later run,
+// or a tile worker, reuses the file while both are unchanged and computes (then writes, atomically) otherwise, so
+// the poses are never stale and a resumed run does not read every depth map again.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "config/job_config.h"
+#include "core/coregistration.h"
+#include "io/depth_block.h"
+
+namespace sacfuse {
+
+// `inner` with the views' poses replaced; rasters, images and files are `inner`'s.
+class CoregisteredBlock : public DepthBlock {
+ public:
+  CoregisteredBlock(std::unique_ptr<DepthBlock> inner, const std::vector<Rigid3d>& cam_from_world);
+
+  const std::string& source() const override { return inner_->source(); }
+  const std::vector<View>& views() const override { return views_; }
+  std::string DepthMapPath(const View& view) const override { return inner_->DepthMapPath(Inner(view)); }
+  std::string ImagePath(const View& view) const override { return inner_->ImagePath(Inner(view)); }
+  DepthRasterSize DepthSize(const View& view) const override { return inner_->DepthSize(Inner(view)); }
+  DepthMap ReadDepthMap(const View& view) const override { return inner_->ReadDepthMap(Inner(view)); }
+  DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override {
+    return inner_->ReadDepthWindow(Inner(view), window);
+  }
+  RgbImage ReadImage(const View& view) const override { return inner_->ReadImage(Inner(view)); }
+  std::vector<double> SceneHeights() const override { return inner_->SceneHeights(); }
+  bool HasConsistencyGraph(const View& view) const override { return inner_->HasConsistencyGraph(Inner(view)); }
+  ConsistencyGraph ReadConsistencyGraph(const View& view) const override {
+    return inner_->ReadConsistencyGraph(Inner(view));
+  }
+
+ private:
+  const View& Inner(const View& view) const { return inner_->views().at(view.index); }
+  std::unique_ptr<DepthBlock> inner_;
+  std::vector<View> views_;
+};
+
+// What the stage did, for the log and run_report.json.
+struct CoregistrationOutcome {
+  bool enabled = false;
+  bool reused = false;          // read from DIR/coregistration.json
+  double seconds = 0.0;         // wall time of the stage (reading, decimating, solving; or reading the file)
+  int decimation = 0;           // largest decimation factor over the views (0 when reused)
+  double median_rotation_deg = 0.0, max_rotation_deg = 0.0;
+  double median_shift_m = 0.0, max_shift_m = 0.0;
+  double rms_before_m = 0.0, rms_after_m = 0.0;  // medians over the views
+};
+
+// `input` as the job fuses it: unchanged when coregistration.enabled is false, else a CoregisteredBlock with the
+// poses of DIR/coregistration.json (reused or computed, above). Throws InputError naming a view whose depth map
+// cannot be read.
+std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::unique_ptr<DepthBlock> input,
+                                                  CoregistrationOutcome* outcome = nullptr);
+
+}  // namespace sacfuse
