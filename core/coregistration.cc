@@ -314,6 +314,20 @@ CoregistrationResult Coregister(const std::vector<CoregistrationInput>& inputs, 
     v.rotation_deg = Eigen::AngleAxisd(s.correction.rotation).angle() * 180.0 / M_PI;
     v.shift_m = s.correction * pivot0[k] - pivot0[k];
   }
+  std::vector<double> rot, shift, before, after;
+  for (const ViewCorrection& v : result.views) {
+    rot.push_back(v.rotation_deg);
+    shift.push_back(v.shift_m.norm());
+    before.push_back(v.rms_before_m);
+    after.push_back(v.rms_after_m);
+  }
+  CoregistrationSummary& sum = result.summary;
+  sum.median_rotation_deg = Median(rot);
+  sum.max_rotation_deg = *std::max_element(rot.begin(), rot.end());
+  sum.median_shift_m = Median(shift);
+  sum.max_shift_m = *std::max_element(shift.begin(), shift.end());
+  sum.median_rms_before_m = Median(before);
+  sum.median_rms_after_m = Median(after);
   return result;
 }
 

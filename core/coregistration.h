@@ -74,7 +74,15 @@ struct CoregistrationIteration {
   double median_step_m = 0.0;        // median over views of this step's translation
 };
 
+// Over the views: medians (and maxima) of the corrections and of the residual rms.
+struct CoregistrationSummary {
+  double median_rotation_deg = 0.0, max_rotation_deg = 0.0;
+  double median_shift_m = 0.0, max_shift_m = 0.0;
+  double median_rms_before_m = 0.0, median_rms_after_m = 0.0;
+};
+
 struct CoregistrationResult {
+  CoregistrationSummary summary;
   std::vector<ViewCorrection> views;  // by view index
   std::vector<CoregistrationIteration> iterations;  // the last entry: residuals after the final step
   size_t pairs = 0;                   // compared view pairs (a, b) of the first pass

@@ -29,12 +29,6 @@ nlohmann::json OptionsJson(const JobConfig& config) {
   return j;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 // Each view's depth map read once and decimated, with the camera of the decimated raster.
 std::vector<CoregistrationInput> ReadDecimated(const DepthBlock& input, const CoregistrationOptions& o,
                                                int* max_decimation) {
@@ -84,14 +78,33 @@ nlohmann::json ResultJson(const DepthBlock& input, const CoregistrationResult& r
     iterations.push_back({{"residuals", it.residuals}, {"weighted_rms_m", it.weighted_rms_m},
                           {"median_step_deg", it.median_step_deg}, {"median_step_m", it.median_step_m}});
   }
+  const CoregistrationSummary& m = r.summary;
+  const nlohmann::json summary = {{"median_rotation_deg", m.median_rotation_deg},
+                                  {"max_rotation_deg", m.max_rotation_deg}, {"median_shift_m", m.median_shift_m},
+                                  {"max_shift_m", m.max_shift_m}, {"median_rms_before_m", m.median_rms_before_m},
+                                  {"median_rms_after_m", m.median_rms_after_m}};
   return {{"format", kFormat}, {"inputs_digest", digest}, {"options", OptionsJson(config)},
-          {"decimation", decimation}, {"pairs", r.pairs}, {"iterations", iterations}, {"views", views}};
+          {"decimation", decimation}, {"pairs", r.pairs}, {"summary", summary}, {"iterations", iterations},
+          {"views", views}};
+}
+
+void Summarise(const nlohmann::json& file, CoregistrationOutcome* o) {
+  const nlohmann::json& m = file.at("summary");
+  CoregistrationSummary& s = o->summary;
+  s.median_rotation_deg = m.at("median_rotation_deg").get<double>();
+  s.max_rotation_deg = m.at("max_rotation_deg").get<double>();
+  s.median_shift_m = m.at("median_shift_m").get<double>();
+  s.max_shift_m = m.at("max_shift_m").get<double>();
+  s.median_rms_before_m = m.at("median_rms_before_m").get<double>();
+  s.median_rms_after_m = m.at("median_rms_after_m").get<double>();
+  o->decimation = file.at("decimation").get<int>();
 }
 
 // The poses of a current DIR/coregistration.json, or none (no file, other inputs or options, unreadable).
 bool ReadCurrent(const std::string& path, const DepthBlock& input, const std::string& digest,
                  const JobConfig& config, nlohmann::json* file, std::vector<Rigid3d>* poses) {
   if (!std::filesystem::exists(path)) return false;
+  CoregistrationOutcome checked;
   try {
     std::ifstream in(path);
     *file = nlohmann::json::parse(in);
@@ -106,6 +119,7 @@ bool ReadCurrent(const std::string& path, const DepthBlock& input, const std::st
     }
     const nlohmann::json& views = file->at("views");
     if (views.size() != input.views().size()) return false;
+    Summarise(*file, &checked);  // throws when the summary is missing or malformed
     poses->clear();
     for (size_t i = 0; i < views.size(); ++i) {
       if (views[i].at("name") != input.views()[i].name) return false;
@@ -116,24 +130,6 @@ bool ReadCurrent(const std::string& path, const DepthBlock& input, const std::st
     spdlog::warn("co-registration: {} cannot be read ({}); computing again", path, e.what());
     return false;
   }
-}
-
-void Summarise(const nlohmann::json& file, CoregistrationOutcome* o) {
-  std::vector<double> rot, shift, before, after;
-  for (const nlohmann::json& v : file.at("views")) {
-    rot.push_back(v.at("rotation_deg").get<double>());
-    const auto s = v.at("shift_m").get<std::vector<double>>();
-    shift.push_back(std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]));
-    before.push_back(v.at("rms_before_m").get<double>());
-    after.push_back(v.at("rms_after_m").get<double>());
-  }
-  o->median_rotation_deg = Median(rot);
-  o->max_rotation_deg = rot.empty() ? 0.0 : *std::max_element(rot.begin(), rot.end());
-  o->median_shift_m = Median(shift);
-  o->max_shift_m = shift.empty() ? 0.0 : *std::max_element(shift.begin(), shift.end());
-  o->rms_before_m = Median(before);
-  o->rms_after_m = Median(after);
-  o->decimation = file.value("decimation", 0);
 }
 
 }  // namespace
@@ -180,10 +176,11 @@ std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::
   }
   Summarise(file, &out);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const CoregistrationSummary& m = out.summary;
   spdlog::info("co-registration of {} views {} in {:.1f} s: rotation median {:.4f} / max {:.4f} deg, shift median "
                "{:.3f} / max {:.3f} m, residual rms median {:.3f} -> {:.3f} m ({})",
-               poses.size(), out.reused ? "reused" : "computed", out.seconds, out.median_rotation_deg,
-               out.max_rotation_deg, out.median_shift_m, out.max_shift_m, out.rms_before_m, out.rms_after_m, path);
+               poses.size(), out.reused ? "reused" : "computed", out.seconds, m.median_rotation_deg,
+               m.max_rotation_deg, m.median_shift_m, m.max_shift_m, m.median_rms_before_m, m.median_rms_after_m, path);
   return std::make_unique<CoregisteredBlock>(std::move(input), poses);
 }
 

@@ -49,10 +49,8 @@ struct CoregistrationOutcome {
   bool enabled = false;
   bool reused = false;          // read from DIR/coregistration.json
   double seconds = 0.0;         // wall time of the stage (reading, decimating, solving; or reading the file)
-  int decimation = 0;           // largest decimation factor over the views (0 when reused)
-  double median_rotation_deg = 0.0, max_rotation_deg = 0.0;
-  double median_shift_m = 0.0, max_shift_m = 0.0;
-  double rms_before_m = 0.0, rms_after_m = 0.0;  // medians over the views
+  int decimation = 0;           // largest decimation factor over the views
+  CoregistrationSummary summary;
 };
 
 // `input` as the job fuses it: unchanged when coregistration.enabled is false, else a CoregisteredBlock with the

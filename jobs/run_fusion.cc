@@ -104,10 +104,12 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                             {"views", views}};
   if (s.coregistration.enabled) {
     const CoregistrationOutcome& c = s.coregistration;
+    const CoregistrationSummary& m = c.summary;
     j["coregistration"] = {{"file", CoregistrationPath(config)}, {"reused", c.reused}, {"seconds", c.seconds},
-                           {"median_rotation_deg", c.median_rotation_deg}, {"max_rotation_deg", c.max_rotation_deg},
-                           {"median_shift_m", c.median_shift_m}, {"max_shift_m", c.max_shift_m},
-                           {"median_rms_before_m", c.rms_before_m}, {"median_rms_after_m", c.rms_after_m}};
+                           {"median_rotation_deg", m.median_rotation_deg}, {"max_rotation_deg", m.max_rotation_deg},
+                           {"median_shift_m", m.median_shift_m}, {"max_shift_m", m.max_shift_m},
+                           {"median_rms_before_m", m.median_rms_before_m},
+                           {"median_rms_after_m", m.median_rms_after_m}};
   }
   if (s.method == "sac") j["sac"] = SacSectionJson(s.fusion, s.superpixels_computed);
   if (s.tiles_run > 0) {
