@@ -95,7 +95,8 @@ std::vector<CoregistrationInput> PerturbedBlock(double rotation_deg, double shif
   Eigen::Vector3d mean_rot = Eigen::Vector3d::Zero(), mean_shift = Eigen::Vector3d::Zero();
   for (size_t k = 0; k < n; ++k) {
     const double sign = k % 2 == 0 ? 1.0 : -1.0;
-    rot[k] = rotation_deg * M_PI / 180.0 * Eigen::Vector3d(std::cos(k * 1.3), std::sin(k * 1.3), 0.3 * sign).normalized();
+    const Eigen::Vector3d axis(std::cos(k * 1.3), std::sin(k * 1.3), 0.3 * sign);
+    rot[k] = rotation_deg * M_PI / 180.0 * axis.normalized();
     shift[k] = shift_m * Eigen::Vector3d(std::cos(k * 2.1), std::sin(k * 2.1), 0.5 * sign);
     mean_rot += rot[k] / static_cast<double>(n);
     mean_shift += shift[k] / static_cast<double>(n);
