@@ -16,6 +16,11 @@
 #include "io/view_identity.h"
 
 namespace sacfuse {
+
+// The summary as coregistration.json keeps it: one list of fields for writing and reading.
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(CoregistrationSummary, median_rotation_deg, max_rotation_deg, median_shift_m,
+                                   max_shift_m, median_rms_before_m, median_rms_after_m)
+
 namespace {
 
 constexpr const char* kFormat = "sacfuse-coregistration-1";
@@ -78,25 +83,13 @@ nlohmann::json ResultJson(const DepthBlock& input, const CoregistrationResult& r
     iterations.push_back({{"residuals", it.residuals}, {"weighted_rms_m", it.weighted_rms_m},
                           {"median_step_deg", it.median_step_deg}, {"median_step_m", it.median_step_m}});
   }
-  const CoregistrationSummary& m = r.summary;
-  const nlohmann::json summary = {{"median_rotation_deg", m.median_rotation_deg},
-                                  {"max_rotation_deg", m.max_rotation_deg}, {"median_shift_m", m.median_shift_m},
-                                  {"max_shift_m", m.max_shift_m}, {"median_rms_before_m", m.median_rms_before_m},
-                                  {"median_rms_after_m", m.median_rms_after_m}};
   return {{"format", kFormat}, {"inputs_digest", digest}, {"options", OptionsJson(config)},
-          {"decimation", decimation}, {"pairs", r.pairs}, {"summary", summary}, {"iterations", iterations},
+          {"decimation", decimation}, {"pairs", r.pairs}, {"summary", r.summary}, {"iterations", iterations},
           {"views", views}};
 }
 
 void Summarise(const nlohmann::json& file, CoregistrationOutcome* o) {
-  const nlohmann::json& m = file.at("summary");
-  CoregistrationSummary& s = o->summary;
-  s.median_rotation_deg = m.at("median_rotation_deg").get<double>();
-  s.max_rotation_deg = m.at("max_rotation_deg").get<double>();
-  s.median_shift_m = m.at("median_shift_m").get<double>();
-  s.max_shift_m = m.at("max_shift_m").get<double>();
-  s.median_rms_before_m = m.at("median_rms_before_m").get<double>();
-  s.median_rms_after_m = m.at("median_rms_after_m").get<double>();
+  o->summary = file.at("summary").get<CoregistrationSummary>();
   o->decimation = file.at("decimation").get<int>();
 }
 
