@@ -9,6 +9,7 @@
 
 #include "core/box2d.h"
 #include "core/depth_normals.h"
+#include "core/median.h"
 #include "core/option_check.h"
 #include "core/sac_view.h"
 #include "core/view_neighbors.h"
@@ -198,12 +199,6 @@ CoregistrationIteration Summarise(const std::vector<PairSums>& pairs) {
   return it;
 }
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 // Per view: residuals with the view on either side and their rms.
 void ViewResiduals(const std::vector<PairSums>& pairs, std::vector<ViewCorrection>* views, bool after) {
   std::vector<double> ss(views->size(), 0.0);
@@ -303,8 +298,8 @@ CoregistrationResult Coregister(const std::vector<CoregistrationInput>& inputs, 
       step_m[k] = t.norm();
     }
     tbb::parallel_for(size_t{0}, nviews, [&](size_t k) { UpdatePivot(&states[k]); });
-    summary.median_step_deg = Median(step_deg);
-    summary.median_step_m = Median(step_m);
+    summary.median_step_deg = UpperMedianInPlace(&step_deg);
+    summary.median_step_m = UpperMedianInPlace(&step_m);
     result.iterations.push_back(summary);
   }
   for (size_t k = 0; k < nviews; ++k) {
@@ -322,12 +317,12 @@ CoregistrationResult Coregister(const std::vector<CoregistrationInput>& inputs, 
     after.push_back(v.rms_after_m);
   }
   CoregistrationSummary& sum = result.summary;
-  sum.median_rotation_deg = Median(rot);
+  sum.median_rotation_deg = UpperMedianInPlace(&rot);
   sum.max_rotation_deg = *std::max_element(rot.begin(), rot.end());
-  sum.median_shift_m = Median(shift);
+  sum.median_shift_m = UpperMedianInPlace(&shift);
   sum.max_shift_m = *std::max_element(shift.begin(), shift.end());
-  sum.median_rms_before_m = Median(before);
-  sum.median_rms_after_m = Median(after);
+  sum.median_rms_before_m = UpperMedianInPlace(&before);
+  sum.median_rms_after_m = UpperMedianInPlace(&after);
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include <tbb/parallel_for.h>
 
 #include "core/depth_combine.h"
+#include "core/median.h"
 #include "core/patch_grid.h"
 
 namespace sacfuse {
@@ -15,12 +16,6 @@ namespace {
 
 constexpr double kMedianChiSquare1 = 0.4549;  // median of chi^2 with one degree of freedom
 constexpr double kMeanPull = 1e-3;            // weight of the pull of each k^2 towards the mean
-
-double Median(std::vector<double>* values) {
-  auto mid = values->begin() + values->size() / 2;
-  std::nth_element(values->begin(), mid, values->end());
-  return *mid;
-}
 
 struct PairRow {
   uint32_t v = 0, b = 0;
@@ -80,8 +75,8 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
     PairRow r;
     r.v = v;
     r.b = others[i];
-    r.m = Median(&ratio[i]) / kMedianChiSquare1;
-    r.a = Median(&share[i]);
+    r.m = UpperMedianInPlace(&ratio[i]) / kMedianChiSquare1;
+    r.a = UpperMedianInPlace(&share[i]);
     rows.push_back(r);
   }
   return rows;
@@ -121,7 +116,7 @@ std::vector<double> EstimatePass(const std::vector<SacView>& views,
   std::vector<double> sorted;
   for (size_t v = 0; v < n; ++v) sorted.push_back(std::sqrt(std::max(x(v), 1e-12)));
   std::vector<double> copy = sorted;
-  const double median = Median(&copy);
+  const double median = UpperMedianInPlace(&copy);
   if (!(median > 0) || !std::isfinite(median)) return {};
   std::vector<double> k(n);
   for (size_t v = 0; v < n; ++v) k[v] = std::clamp(sorted[v], 0.1 * median, 10.0 * median);
