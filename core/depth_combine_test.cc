@@ -141,6 +141,17 @@ struct FourViews {
   }
 };
 
+// Independent per-pixel depth noise of sigma_m[i] metres on view i of `s` (fixed seed).
+void AddDepthNoise(const double (&sigma_m)[4], unsigned seed, FourViews* s) {
+  std::mt19937 rng(seed);
+  for (size_t i = 0; i < 4; ++i) {
+    std::normal_distribution<double> noise(0.0, sigma_m[i]);
+    for (float& z : s->block.depths[i].data) z += static_cast<float>(noise(rng));
+  }
+}
+// Each of the four views combined with the three others.
+const std::vector<std::vector<uint32_t>> kFourViewsOthers = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+
 TEST(CombineDepthTest, AveragesAgreeingViewsEquallyOrByNoiseAndGatesOutOthers) {
   // View 0 exact; 1: +0.3 m; 2: -0.3 m; 3: a 5 m blunder (beyond 12 GSDs = 2 m).
   FourViews s({0.0, 0.3, -0.3, 5.0});
@@ -182,13 +193,8 @@ TEST(ViewNoiseTest, RecoversTheRatioOfDepthNoiseBetweenViews) {
   // Views 0-1 have depth noise sigma 0.2 m, views 2-3 0.4 m (independent per pixel, fixed seed); all at the same
   // height, so k must come out in the ratio 1 : 2.
   FourViews s({0.0, 0.0, 0.0, 0.0});
-  std::mt19937 rng(7);
-  const double sigma[4] = {0.2, 0.2, 0.4, 0.4};
-  for (size_t i = 0; i < 4; ++i) {
-    std::normal_distribution<double> noise(0.0, sigma[i]);
-    for (float& z : s.block.depths[i].data) z += static_cast<float>(noise(rng));
-  }
-  const std::vector<std::vector<uint32_t>> others = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};
+  AddDepthNoise({0.2, 0.2, 0.4, 0.4}, 7, &s);
+  const std::vector<std::vector<uint32_t>>& others = kFourViewsOthers;
   ViewNoiseOptions options;
   options.sample_step_px = 2;
   options.max_samples_per_view = 0;  // the whole step-2 grid (the cap is tested below)
@@ -411,6 +417,34 @@ TEST(ViewNoiseTest, SecondPassWithTheCombinesSlopeStep) {
     error_two += std::abs(two_passes[v] * scale - WideViews::kNoiseM);
   }
   EXPECT_LT(error_two, 0.8 * error_one);
+}
+
+TEST(ViewNoiseTest, TheSecondPassGateFollowsTheNoise) {
+  // Views 0-1 sigma 0.2 m, views 2-3 0.8 m: the difference of 2 and 3 has sigma 1.13 m, and the 12 GSD gate (2 m)
+  // cuts it off at 1.8 sigma, so a gate fixed in GSDs understates their noise. The second pass's gate of 2.5 sigma
+  // of each pair (under the first pass's k) lets their residuals in.
+  FourViews s({0.0, 0.0, 0.0, 0.0});
+  const double sigma[4] = {0.2, 0.2, 0.8, 0.8};
+  AddDepthNoise(sigma, 5, &s);
+  ASSERT_NEAR(12.0 * kNadirGsdM, 2.0, 0.01);
+  const std::vector<std::vector<uint32_t>>& others = kFourViewsOthers;
+  ViewNoiseOptions options;
+  options.sample_step_px = 2;
+  options.max_samples_per_view = 0;
+  options.gate_sigmas = 0.0;
+  const std::vector<double> fixed_gate = EstimateViewNoiseFactors(s.views, others, options);
+  options.gate_sigmas = 2.5;
+  const std::vector<double> noise_gate = EstimateViewNoiseFactors(s.views, others, options);
+  ASSERT_EQ(fixed_gate.size(), 4u);
+  ASSERT_EQ(noise_gate.size(), 4u);
+  // Measured sigma (m), fixed gate -> noise gate: 0.295 -> 0.241, 0.284 -> 0.226, 0.750 -> 0.790, 0.760 -> 0.799
+  // (the truncated pairs also bias the quiet views' share of the least-squares solve upwards).
+  const double scale = DepthNoiseScale(s.views[0], kNadirHeightM);
+  for (size_t v = 0; v < 4; ++v) {
+    EXPECT_LT(std::abs(noise_gate[v] * scale - sigma[v]), std::abs(fixed_gate[v] * scale - sigma[v])) << v;
+    EXPECT_NEAR(noise_gate[v] * scale, sigma[v], 0.25 * sigma[v]) << v;
+  }
+  EXPECT_LT(fixed_gate[2] * scale, 0.95 * sigma[2]);
 }
 
 }  // namespace

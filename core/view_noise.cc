@@ -10,6 +10,7 @@
 #include "core/depth_combine.h"
 #include "core/median.h"
 #include "core/patch_grid.h"
+#include "core/sac_tolerance.h"
 
 namespace sacfuse {
 namespace {
@@ -41,9 +42,15 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
     const SecantPoints ray = SecantPointsOnRay(view, col + 0.5, row + 0.5, d, step_m);
     ProjectForSecants(views, others, ray.at_depth, at_depth);
     for (size_t i = 0; i < others.size(); ++i) {
+      double gate_m = options.gate_gsd * gsd;
+      if (!prior_k.empty() && options.gate_sigmas > 0 && at_depth[i].in_front) {
+        // sigma of the pair's difference under the first pass's k (the neighbour's at the point's depth in it)
+        const double sigma_m = PairSigmaM(DepthSigmaM(views, prior_k, v, d),
+                                          DepthSigmaM(views, prior_k, others[i], at_depth[i].z_m));
+        gate_m = std::max(gate_m, options.gate_sigmas * sigma_m);
+      }
       RayHit hit;
-      if (!IntersectRay(views[others[i]], at_depth[i], ray.at_next, d, step_m, options.gate_gsd * gsd,
-                        options.min_slope, &hit)) {
+      if (!IntersectRay(views[others[i]], at_depth[i], ray.at_next, d, step_m, gate_m, options.min_slope, &hit)) {
         continue;
       }
       const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);

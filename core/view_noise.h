@@ -11,8 +11,9 @@
 // degree of freedom; the median keeps blunders that slip through the gate from inflating it) and
 // a = median(s_v^2 / (s_v^2 + s_b^2)), so that a k_v^2 + (1 - a) k_b^2 ~ m. The k_v^2 solve these rows in the
 // least-squares sense (plus a weak pull of 1e-3 towards their mean, so views without pairs stay defined); the
-// result is clamped to [0.1, 10] times the median k. k is absolute: sigma_v(z) = k_v z gsd_v(z) metres (the
-// residuals inside the gate understate very large noise).
+// result is clamped to [0.1, 10] times the median k. k is absolute: sigma_v(z) = k_v z gsd_v(z) metres. The gate
+// is gate_gsd local GSDs, in the second pass widened to gate_sigmas sigma of each pair's difference (a gate fixed in
+// GSDs cuts the residuals of noisy views off inside their noise and understates k).
 //
 // The residuals come from the combine's secant, whose slope over one GSD scatters them where the noise is large
 // (core/depth_combine.h). So with slope_step_sigmas > 0 the estimate is made twice: first with the slope over one
@@ -43,6 +44,13 @@ struct ViewNoiseOptions {
   double gate_gsd = 12.0;     // residuals within this many local GSDs count. Not fusion.combine_gate_gsd (4): a gate
                               // that narrow truncates the residuals and halved the estimated noise on blocks with
                               // large errors (aerial-bench Montpellier at error scale 2.5: k 0.0061 against 0.0130)
+  // The second pass widens each pair's gate to this many sigma of the pair's difference under the first pass's k
+  // (0 = gate_gsd only). With a gate fixed in GSDs, the noisier views' residuals are cut off inside the noise and k
+  // comes out low, most for the noisiest: aerial-bench Montpellier x2.5 gave its obliques 0.0143 against the
+  // 0.0167 they carry (nadirs 0.0129 against 0.0125), our city x2.5 0.017-0.022 against 0.023 / 0.035. 2.5 sigma
+  // (2026-11-27, twenty-first session; README "SAC fusion: the choices"): our bench x2.5 +1.5 to +3.2 points at
+  // 2x GSD, aerial-bench x2.5 +0.0003 to +0.0021, the scale-1 blocks within -0.03 points and +-0.0001.
+  double gate_sigmas = 2.5;
   double min_slope = 0.2;     // as DepthCombineOptions::min_slope
   // As DepthCombineOptions::slope_step_sigmas; > 0: a second pass whose secants take their slope over that many
   // sigmas of the first pass's noise (0 = one pass).
