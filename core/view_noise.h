@@ -47,7 +47,7 @@ struct ViewNoiseOptions {
   // The second pass widens each pair's gate to this many sigma of the pair's difference under the first pass's k
   // (0 = gate_gsd only). With a gate fixed in GSDs, the noisier views' residuals are cut off inside the noise and k
   // comes out low, most for the noisiest: aerial-bench Montpellier x2.5 gave its obliques 0.0143 against the
-  // 0.0167 they carry (nadirs 0.0129 against 0.0125), our city x2.5 0.017-0.022 against 0.023 / 0.035. 2.5 sigma
+  // 0.0167 they carry (nadirs 0.0129 against 0.0125), our city x2.5 0.017-0.023 against 0.023 / 0.035. 2.5 sigma
   // (2026-11-27, twenty-first session; README "SAC fusion: the choices"): our bench x2.5 +1.5 to +3.2 points at
   // 2x GSD, aerial-bench x2.5 +0.0003 to +0.0021, the scale-1 blocks within -0.03 points and +-0.0001.
   double gate_sigmas = 2.5;
