@@ -38,16 +38,16 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
     if (!IsValidDepth(d)) return;
     const double gsd = view.GsdAt(d);
     const double s_v = DepthNoiseScale(view, d);
-    const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, prior_k[v] * s_v, options.slope_step_sigmas);
+    const double own_sigma_m = prior_k.empty() ? 0.0 : prior_k[v] * s_v;  // under the first pass's k
+    const double step_m = prior_k.empty() ? gsd : SecantStepM(gsd, own_sigma_m, options.slope_step_sigmas);
     const SecantPoints ray = SecantPointsOnRay(view, col + 0.5, row + 0.5, d, step_m);
     ProjectForSecants(views, others, ray.at_depth, at_depth);
     for (size_t i = 0; i < others.size(); ++i) {
       double gate_m = options.gate_gsd * gsd;
       if (!prior_k.empty() && options.gate_sigmas > 0 && at_depth[i].in_front) {
-        // sigma of the pair's difference under the first pass's k (the neighbour's at the point's depth in it)
-        const double sigma_m = PairSigmaM(DepthSigmaM(views, prior_k, v, d),
-                                          DepthSigmaM(views, prior_k, others[i], at_depth[i].z_m));
-        gate_m = std::max(gate_m, options.gate_sigmas * sigma_m);
+        // sigma of the pair's difference (the neighbour's at the point's depth in it)
+        const double pair_sigma_m = PairSigmaM(own_sigma_m, DepthSigmaM(views, prior_k, others[i], at_depth[i].z_m));
+        gate_m = std::max(gate_m, options.gate_sigmas * pair_sigma_m);
       }
       RayHit hit;
       if (!IntersectRay(views[others[i]], at_depth[i], ray.at_next, d, step_m, gate_m, options.min_slope, &hit)) {
