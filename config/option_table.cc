@@ -168,6 +168,8 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
            "average: passes of the mean, each from the previous mean");
   s.AddDouble("fusion.combine_later_pass_gate", &f.combine_later_pass_gate, Affects("-", Closed(0.05, 1), kSac),
               "average: later passes' gate around the previous mean, x the gate (1 = all of it)");
+  s.AddBool("fusion.combine_anchors", &f.combine_anchors, Affects("-", {}, kSac),
+            "average: combine the anchors exactly, interpolate between them where smooth (false = every pixel)");
   s.AddInt("fusion.combine_max_views", &f.combine_max_views, Affects("views", Closed(1, 64), kSac),
            "average: views consulted per view");
   s.AddDouble("fusion.combine_max_view_angle_deg", &f.combine_max_view_angle_deg, Affects("deg", Closed(0, 180), kSac),

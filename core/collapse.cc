@@ -6,6 +6,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/combine_anchors.h"
 #include "core/depth_combine.h"
 #include "core/method_views.h"
 #include "core/patch_grid.h"
@@ -106,6 +107,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   };
   std::vector<PatchOutput> patch_out(static_cast<size_t>(kBandsPerBatch) * patches_per_band);
   std::vector<FusedPoint> band_points;
+  const bool anchored = combine && options.combine_anchors;
 
   auto process_patch = [&](const PixelWindow& patch, PatchOutput& result) {
     std::vector<FusedPoint>& out = result.points;
@@ -113,6 +115,16 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
     out.clear();
     result.rows.clear();
     stats = CollapseStats{};
+    // With combine_anchors, the emitted pixels that are not anchors wait for the patch's anchors
+    // (core/combine_anchors.h): their point's index in `out`, pixel, depth and node.
+    CombineAnchors anchors(anchored ? patch : PixelWindow{});
+    struct Pending {
+      size_t index;
+      int row, col;
+      float depth;
+      uint32_t node_id;
+    };
+    std::vector<Pending> pending;
     const WindowOwnership ownership = ClassifyWindow(view, patch, owner);
     if (ownership.kind == WindowOwnership::kNone) {
       stats.not_owned = ownership.valid_pixels;
@@ -160,10 +172,13 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         }
         FusedPoint p;
         p.point_in_world = point;
-        if (combine) {
+        if (anchored && !anchors.IsAnchor(row, col)) {
+          pending.push_back({out.size(), row, col, d, node_id});
+        } else if (combine) {
           const Eigen::Vector3d plane_normal = nodes.nodes[node_id].normal_in_world.cast<double>();
           const CombinedDepth refined = CombineDepth(views, v, col + 0.5, row + 0.5, d, combine_views[v], noise_factor,
                                                      combine_options, plane_normal);
+          if (anchored) anchors.Set(row, col, refined);
           p.point_in_world = PixelPoint(view, row, col, refined.depth_m);
         }
         p.rgb = PixelColour(colours, depth, row, col);
@@ -171,6 +186,20 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         out.push_back(p);
         result.rows.push_back(row);
       }
+    }
+    for (const Pending& q : pending) {
+      const Eigen::Vector3d plane_normal = nodes.nodes[q.node_id].normal_in_world.cast<double>();
+      double depth_m = 0.0;
+      if (anchors.Interpolate(views, v, q.row, q.col, q.depth, noise_factor, combine_options, plane_normal,
+                              &depth_m)) {
+        ++stats.interpolated;
+      } else {
+        const CombinedDepth exact = CombineDepth(views, v, q.col + 0.5, q.row + 0.5, q.depth, combine_views[v],
+                                                 noise_factor, combine_options, plane_normal);
+        anchors.Set(q.row, q.col, exact);
+        depth_m = exact.depth_m;
+      }
+      out[q.index].point_in_world = PixelPoint(view, q.row, q.col, depth_m);
     }
     stats.emitted = out.size();
   };

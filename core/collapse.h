@@ -32,6 +32,7 @@ struct CollapseStats {
   uint64_t free_space = 0;        // dropped: views observed its place as empty
   uint64_t outliers = 0;          // dropped: too few consistent views
   uint64_t emitted = 0;
+  uint64_t interpolated = 0;      // of the emitted: combined from the anchors around them (core/combine_anchors.h)
   uint64_t not_owned = 0;         // valid pixels the owner rejected (another tile's), not counted above
   CollapseStats& operator+=(const CollapseStats& o) {
     input_pixels += o.input_pixels;
@@ -41,6 +42,7 @@ struct CollapseStats {
     free_space += o.free_space;
     outliers += o.outliers;
     emitted += o.emitted;
+    interpolated += o.interpolated;
     not_owned += o.not_owned;
     return *this;
   }

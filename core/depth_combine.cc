@@ -116,6 +116,28 @@ bool IntersectPlane(const SacView& b, const ViewPoint& at_depth_in_b, const Pixe
   return true;
 }
 
+double CombineWeight(const std::vector<SacView>& views, uint32_t i, double z_m, double slope,
+                     const std::vector<double>& noise_factor, CombineWeights weights) {
+  const double factor = noise_factor.empty() ? 1.0 : noise_factor[i];
+  switch (weights) {
+    case CombineWeights::kEqual:
+      return 1.0;
+    case CombineWeights::kView:
+      return 1.0 / (factor * factor);
+    case CombineWeights::kNoise:
+      break;
+  }
+  const double sigma_m = factor * DepthNoiseScale(views[i], z_m) / slope;
+  return 1.0 / (sigma_m * sigma_m);
+}
+
+double CombineGateM(const std::vector<SacView>& views, uint32_t v, double depth_m,
+                    const std::vector<double>& noise_factor, const DepthCombineOptions& options) {
+  const double gsd = views[v].GsdAt(depth_m);
+  if (noise_factor.empty()) return options.gate_gsd * gsd;
+  return std::max(options.gate_gsd * gsd, options.gate_sigmas * noise_factor[v] * DepthNoiseScale(views[v], depth_m));
+}
+
 CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double u, double v_px, double depth_m,
                            const std::vector<uint32_t>& neighbors, const std::vector<double>& noise_factor,
                            const DepthCombineOptions& options, const Eigen::Vector3d& plane_normal_in_world) {
@@ -125,8 +147,7 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   const double own_sigma = factor(v) * DepthNoiseScale(view, depth_m);
   // The secant's second sample: one GSD, or slope_step_sigmas sigma of the own depth where the noise is larger.
   const double step_m = noise_factor.empty() ? gsd : SecantStepM(gsd, own_sigma, options.slope_step_sigmas);
-  // The gate: gate_gsd local GSDs, widened to gate_sigmas sigma of the own depth when the noise is larger.
-  const double gate_m = std::max(options.gate_gsd * gsd, noise_factor.empty() ? 0.0 : options.gate_sigmas * own_sigma);
+  const double gate_m = CombineGateM(views, v, depth_m, noise_factor, options);
   const SecantPoints ray = SecantPointsOnRay(view, u, v_px, depth_m, step_m);
   // The plane of the pixel's superpixel, where it has one that the ray does not graze.
   const PixelRay pixel_ray = PixelRayOf(view, u, v_px);
@@ -136,19 +157,8 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
   // ... for the views that see the point within kPlaneMaxPairAngleDeg of the ray.
   const double min_pair_cos = std::cos(kPlaneMaxPairAngleDeg * M_PI / 180.0);
 
-  // The weight of depth map i whose z-depth at the point is z_m and whose intersection with the ray has slope
-  // `slope` (1 for the own depth): options.weights. The noise model is evaluated only when it is the rule.
   auto weight = [&](uint32_t i, double z_m, double slope) {
-    switch (options.weights) {
-      case CombineWeights::kEqual:
-        return 1.0;
-      case CombineWeights::kView:
-        return 1.0 / (factor(i) * factor(i));
-      case CombineWeights::kNoise:
-        break;
-    }
-    const double sigma_m = factor(i) * DepthNoiseScale(views[i], z_m) / slope;
-    return 1.0 / (sigma_m * sigma_m);
+    return CombineWeight(views, i, z_m, slope, noise_factor, options.weights);
   };
   CheckCombineViewCount(neighbors.size());
   // One pass: every neighbour's surface on the ray, found from the ray's point at depth `centre_m` (the own depth,
@@ -158,6 +168,8 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
     const SecantPoints at = centre_m == depth_m ? ray : SecantPointsOnRay(view, u, v_px, centre_m, step_m);
     double weight_sum = weight(v, depth_m, 1.0);
     double weighted_depth = weight_sum * depth_m;
+    double others_weight = 0.0;
+    double others_weighted_depth = 0.0;
     CombinedDepth result;
     ViewPoint at_centre[kMaxCombineViews];
     ProjectForSecants(views, neighbors, at.at_depth, at_centre);
@@ -176,9 +188,15 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
       const double w = weight(nb, hit.z_b_m, std::abs(hit.slope));
       weight_sum += w;
       weighted_depth += w * hit.depth_m;
+      others_weight += w;
+      others_weighted_depth += w * hit.depth_m;
       ++result.support;
     }
     result.depth_m = weighted_depth / weight_sum;
+    if (others_weight > 0.0) {
+      result.others_weight = others_weight;
+      result.others_depth_m = others_weighted_depth / others_weight;
+    }
     return result;
   };
   CombinedDepth out = pass(depth_m, gate_m);

@@ -188,7 +188,21 @@ inline void ProjectForSecants(const std::vector<SacView>& views, const std::vect
 struct CombinedDepth {
   double depth_m = 0.0;   // refined depth along the view's ray (the input depth when nothing agreed)
   int support = 1;        // depth maps that took part, the own one included
+  // The other depth maps' part of the last pass: their summed weight and their weighted mean depth along the ray
+  // (0 when none agreed), so depth_m = (w_own d + others_weight others_depth_m) / (w_own + others_weight).
+  double others_weight = 0.0;
+  double others_depth_m = 0.0;
 };
+
+// The weight of depth map i in the mean, whose z-depth at the point is z_m and whose intersection with the ray
+// has slope `slope` (1 for the own depth): DepthCombineOptions::weights (header). noise_factor empty = 1 for all.
+double CombineWeight(const std::vector<SacView>& views, uint32_t i, double z_m, double slope,
+                     const std::vector<double>& noise_factor, CombineWeights weights);
+
+// The gate of the own depth `depth_m` of view v: DepthCombineOptions::gate_gsd local GSDs, widened to gate_sigmas
+// sigma of the own depth's estimated noise.
+double CombineGateM(const std::vector<SacView>& views, uint32_t v, double depth_m,
+                    const std::vector<double>& noise_factor, const DepthCombineOptions& options);
 
 // Refines depth `depth_m` of pixel centre (u, v) of `views[v]` with the depth maps of `neighbors` (indices into
 // `views`). `noise_factor[i]` is k of view i (empty = 1 for all). `plane_normal_in_world`: the normal of the plane

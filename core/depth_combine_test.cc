@@ -144,10 +144,7 @@ struct FourViews {
 // Independent per-pixel depth noise of sigma_m[i] metres on view i of `s` (fixed seed).
 void AddDepthNoise(const double (&sigma_m)[4], unsigned seed, FourViews* s) {
   std::mt19937 rng(seed);
-  for (size_t i = 0; i < 4; ++i) {
-    std::normal_distribution<double> noise(0.0, sigma_m[i]);
-    for (float& z : s->block.depths[i].data) z += static_cast<float>(noise(rng));
-  }
+  for (size_t i = 0; i < 4; ++i) testing::AddDepthNoise(&s->block.depths[i], sigma_m[i], &rng);
 }
 // Each of the four views combined with the three others.
 const std::vector<std::vector<uint32_t>> kFourViewsOthers = {{1, 2, 3}, {0, 2, 3}, {0, 1, 3}, {0, 1, 2}};

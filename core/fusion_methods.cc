@@ -53,6 +53,7 @@ FusionStats FromSacStats(const SacStats& s) {
   out.Count("pixels_free_space", s.collapse.free_space);
   out.Count("pixels_outliers", s.collapse.outliers);
   out.Count("pixels_not_owned", s.collapse.not_owned);
+  out.Count("points_interpolated", s.collapse.interpolated);
   out.AddHistogram("netlet_size",
                    std::vector<uint64_t>(s.labeling.size_histogram.begin(), s.labeling.size_histogram.end()));
   if (!s.noise_factor.empty()) out.view_values.emplace_back("noise_factor", s.noise_factor);

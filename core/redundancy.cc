@@ -22,14 +22,18 @@ bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen:
     const Eigen::Vector3d point_in_b = bv.PointInCamera(point_in_world);
     const double sigma_b = sigma_m(b, point_in_b.z());
     if (sigma_b > own_sigma || (sigma_b == own_sigma && b > v)) continue;
-    const DepthLookup hit = LookupDepthInCamera(bv, point_in_b);
-    if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
+    // Its cluster's choice before its depth: on a full-scale Dortmund tile 3.4 of the 4.9 more precise candidates
+    // per pixel agreed in depth and then failed here; a label is read from a smaller raster than a depth.
+    const DepthLookup at = ProjectIntoDepth(bv, point_in_b);
+    if (!at.inside) continue;
+    if (chosen_view[nodes.Id(b, static_cast<uint32_t>(bv.superpixels->label(at.row, at.col)))] != b) continue;
+    const float stored_depth_m = bv.depth->at(at.row, at.col);
+    if (!IsValidDepth(stored_depth_m)) continue;
     const double pair_sigma = noise_factor.empty() ? 0.0 : PairSigmaM(own_sigma, sigma_b);
-    const double tolerance = std::max(DepthToleranceM(bv, hit.z_m, options),
+    const double tolerance = std::max(DepthToleranceM(bv, at.z_m, options),
                                       options.redundancy_tolerance_sigmas * pair_sigma);
-    if (std::abs(hit.stored_depth_m - hit.z_m) > tolerance) continue;
-    if (chosen_view[nodes.Id(b, static_cast<uint32_t>(bv.superpixels->label(hit.row, hit.col)))] != b) continue;
-    if (verdicts.At(b, hit.row, hit.col) != PointVerdict::kPasses) continue;
+    if (std::abs(stored_depth_m - at.z_m) > tolerance) continue;
+    if (verdicts.At(b, at.row, at.col) != PointVerdict::kPasses) continue;
     return true;
   }
   return false;

@@ -99,6 +99,10 @@ struct SacOptions {
   // previous mean (and within the whole gate of the own depth). 1 (the default) = the whole gate; 0.75 gains on
   // aerial-bench and loses on our bench (core/depth_combine.h).
   double combine_later_pass_gate = 1.0;
+  // average: combine exactly only the anchors of each patch (every second row and column) and interpolate the
+  // other depth maps' mean surface for the emitted pixels between them where it is smooth (core/combine_anchors.h);
+  // false = every emitted pixel exactly.
+  bool combine_anchors = true;
   int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
   // --- Superpixels (nodes).

@@ -3,6 +3,7 @@
 // coordinates, exact depth maps, and regular grid "superpixels", so SAC tests have answers known by construction.
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -100,6 +101,12 @@ struct SyntheticBlock {
     return out;
   }
 };
+
+// Independent Gaussian noise of sigma_m metres added to every depth of `depth`.
+inline void AddDepthNoise(DepthMap* depth, double sigma_m, std::mt19937* rng) {
+  std::normal_distribution<double> noise(0.0, sigma_m);
+  for (float& z : depth->data) z += static_cast<float>(noise(*rng));
+}
 
 // Collects points written to a sink.
 class CollectingSink : public PointSink {
