@@ -185,7 +185,7 @@ TEST(CombineAnchorsTest, FusionWithAnchorsKeepsThePointsAndTheirAccuracy) {
   // of the few depth maps behind each.
   EXPECT_LT(max_apart, kAnchorToleranceGsd * kNadirGsdM) << "a point moved farther than the tolerance allows";
   std::cout << "rms to the plane: " << rms_with << " m with anchors, " << rms_exact << " m exact; max apart "
-            << max_apart << " m\n";
+            << max_apart << " m; " << with_stats.collapse.interpolated << " of " << with.size() << " interpolated\n";
 }
 
 }  // namespace
