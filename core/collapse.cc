@@ -115,6 +115,11 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
     out.clear();
     result.rows.clear();
     stats = CollapseStats{};
+    const WindowOwnership ownership = ClassifyWindow(view, patch, owner);
+    if (ownership.kind == WindowOwnership::kNone) {
+      stats.not_owned = ownership.valid_pixels;
+      return;
+    }
     // With combine_anchors, the emitted pixels that are not anchors wait for the patch's anchors
     // (core/combine_anchors.h): their point's index in `out`, pixel, depth and node.
     CombineAnchors anchors(anchored ? patch : PixelWindow{});
@@ -125,11 +130,6 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
       uint32_t node_id;
     };
     std::vector<Pending> pending;
-    const WindowOwnership ownership = ClassifyWindow(view, patch, owner);
-    if (ownership.kind == WindowOwnership::kNone) {
-      stats.not_owned = ownership.valid_pixels;
-      return;
-    }
     for (int row = patch.row_begin; row < patch.row_end; ++row) {
       for (int col = patch.col_begin; col < patch.col_end; ++col) {
         const float d = depth.at(row, col);

@@ -30,9 +30,7 @@ bool CombineAnchors::Interpolate(const std::vector<SacView>& views, uint32_t v, 
   // leave the same centre, so t = M (n . r_anchor) / (n . r_pixel), r the rays' directions (unit z) in the camera
   // frame. Without a plane, or where the pixel's ray grazes it (kPlaneMinCos, as in the combine), t = M.
   const PinholeCamera& cam = view.depth_camera;
-  auto ray = [&](int r, int c) {
-    return Eigen::Vector3d((c + 0.5 - cam.cx) / cam.fx, (r + 0.5 - cam.cy) / cam.fy, 1.0);
-  };
+  auto ray = [&](int r, int c) { return cam.Unproject(c + 0.5, r + 0.5, 1.0); };
   Eigen::Vector3d normal_in_cam = Eigen::Vector3d::Zero();
   double n_dot_pixel_ray = 0.0;
   if (plane_normal_in_world.squaredNorm() > 0.0) {
@@ -58,7 +56,7 @@ bool CombineAnchors::Interpolate(const std::vector<SacView>& views, uint32_t v, 
     }
   }
   if (count < kMinAnchorNeighbours) return false;
-  const double own_sigma_m = noise_factor.empty() ? 0.0 : noise_factor[v] * DepthNoiseScale(view, depth_m);
+  const double own_sigma_m = noise_factor.empty() ? 0.0 : DepthSigmaM(views, noise_factor, v, depth_m);
   const double tolerance_m = std::max(kAnchorToleranceGsd * view.GsdAt(depth_m), kAnchorToleranceSigmas * own_sigma_m);
   if (hi - lo > tolerance_m) return false;
   const double others_depth_m = depth_sum / count;

@@ -135,7 +135,7 @@ double CombineGateM(const std::vector<SacView>& views, uint32_t v, double depth_
                     const std::vector<double>& noise_factor, const DepthCombineOptions& options) {
   const double gsd = views[v].GsdAt(depth_m);
   if (noise_factor.empty()) return options.gate_gsd * gsd;
-  return std::max(options.gate_gsd * gsd, options.gate_sigmas * noise_factor[v] * DepthNoiseScale(views[v], depth_m));
+  return std::max(options.gate_gsd * gsd, options.gate_sigmas * DepthSigmaM(views, noise_factor, v, depth_m));
 }
 
 CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double u, double v_px, double depth_m,
