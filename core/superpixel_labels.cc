@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 
@@ -9,26 +10,8 @@ namespace sacfuse {
 
 SuperpixelLabels::SuperpixelLabels(int width, int height, const std::vector<int32_t>& labels)
     : width_(width), height_(height) {
-  if (width < 0 || height < 0 || labels.size() != size()) {
-    throw Error("SuperpixelLabels: " + std::to_string(labels.size()) + " labels for a " + std::to_string(width) +
-                "x" + std::to_string(height) + " raster");
-  }
+  FindBands(labels);
   const size_t row_values = static_cast<size_t>(width);
-  const size_t bands = (static_cast<size_t>(height) + kBandRows - 1) / kBandRows;
-  band_base_.assign(bands, 0);
-  for (size_t b = 0; b < bands && banded_; ++b) {
-    const auto begin = labels.begin() + static_cast<std::ptrdiff_t>(b * kBandRows * row_values);
-    const size_t end_index = std::min(labels.size(), (b + 1) * kBandRows * row_values);
-    const auto end = labels.begin() + static_cast<std::ptrdiff_t>(end_index);
-    if (begin == end) continue;
-    const auto [lo, hi] = std::minmax_element(begin, end);
-    if (*lo < 0 || static_cast<int64_t>(*hi) - *lo > kMaxBandSpan) {
-      banded_ = false;
-    } else {
-      band_base_[b] = static_cast<uint32_t>(*lo);
-    }
-  }
-  if (!banded_) band_base_.clear();
   if (BuildPalettes(labels)) {
     storage_ = Storage::kPalette;
     return;
@@ -47,6 +30,39 @@ SuperpixelLabels::SuperpixelLabels(int width, int height, const std::vector<int3
       offsets_[i] = static_cast<uint16_t>(static_cast<uint32_t>(labels[i]) - base);
     }
   }
+}
+
+SuperpixelLabels SuperpixelLabels::Unpacked(int width, int height, std::vector<int32_t> labels) {
+  SuperpixelLabels out;
+  out.width_ = width;
+  out.height_ = height;
+  out.FindBands(labels);
+  out.storage_ = Storage::kWide;
+  out.wide_ = std::move(labels);
+  return out;
+}
+
+void SuperpixelLabels::FindBands(const std::vector<int32_t>& labels) {
+  if (width_ < 0 || height_ < 0 || labels.size() != size()) {
+    throw Error("SuperpixelLabels: " + std::to_string(labels.size()) + " labels for a " + std::to_string(width_) +
+                "x" + std::to_string(height_) + " raster");
+  }
+  const size_t row_values = static_cast<size_t>(width_);
+  const size_t bands = (static_cast<size_t>(height_) + kBandRows - 1) / kBandRows;
+  band_base_.assign(bands, 0);
+  for (size_t b = 0; b < bands && banded_; ++b) {
+    const auto begin = labels.begin() + static_cast<std::ptrdiff_t>(b * kBandRows * row_values);
+    const size_t end_index = std::min(labels.size(), (b + 1) * kBandRows * row_values);
+    const auto end = labels.begin() + static_cast<std::ptrdiff_t>(end_index);
+    if (begin == end) continue;
+    const auto [lo, hi] = std::minmax_element(begin, end);
+    if (*lo < 0 || static_cast<int64_t>(*hi) - *lo > kMaxBandSpan) {
+      banded_ = false;
+    } else {
+      band_base_[b] = static_cast<uint32_t>(*lo);
+    }
+  }
+  if (!banded_) band_base_.clear();
 }
 
 bool SuperpixelLabels::BuildPalettes(const std::vector<int32_t>& labels) {

@@ -13,6 +13,10 @@
 
 namespace sacfuse {
 
+// How a freshly computed label raster is held: packed (the constructor: palettes, ~0.6 bytes per pixel) or as
+// given (SuperpixelLabels::Unpacked, for a map that is written to its cache file and dropped).
+enum class LabelPacking { kPacked, kUnpacked };
+
 class SuperpixelLabels {
  public:
   static constexpr int kBandRows = 64;            // rows per band (the file layout; the u16 storage)
@@ -24,6 +28,11 @@ class SuperpixelLabels {
   // Row-major labels of a width x height raster. Throws Error when labels.size() != width * height. Negative
   // labels are kept (int32 storage), for the validators downstream to name.
   SuperpixelLabels(int width, int height, const std::vector<int32_t>& labels);
+  // The same labels kept as given (int32, 4 bytes per pixel, nothing packed): for a map that is only written to
+  // the cache file and dropped (the tiled runs' superpixel pass), where packing the palettes and unpacking them
+  // again row by row for the file was ~9 % of the pass (issue 13). banded() and band_base() are as above, so the
+  // file is the same; operator== then differs from the packed labels' (it compares storage).
+  static SuperpixelLabels Unpacked(int width, int height, std::vector<int32_t> labels);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -73,6 +82,8 @@ class SuperpixelLabels {
 
  private:
   enum class Storage : uint8_t { kPalette, kBanded, kWide };
+  // Checks the size and sets banded_ and band_base_ (throws Error when labels.size() != width * height).
+  void FindBands(const std::vector<int32_t>& labels);
   // Tries the palette storage; false (nothing kept) when a block meets more than kMaxPaletteLabels labels.
   bool BuildPalettes(const std::vector<int32_t>& labels);
 

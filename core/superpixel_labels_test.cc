@@ -1,5 +1,8 @@
 #include "core/superpixel_labels.h"
 
+#include <utility>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -101,6 +104,25 @@ TEST(SuperpixelLabelsTest, ABandSpanningMoreThanAU16OrNegativeLabelsKeepInt32) {
   // Exactly 65,535 apart still fits.
   EXPECT_TRUE(SuperpixelLabels(2, 1, {7, 7 + 65535}).banded());
   EXPECT_FALSE(SuperpixelLabels(2, 1, {7, 7 + 65536}).banded());
+}
+
+TEST(SuperpixelLabelsTest, UnpackedLabelsHoldTheSameLabelsAndBands) {
+  // Three layouts the packed labels would pick: palettes, banded u16 offsets, int32 (a band beyond a u16).
+  const std::vector<std::pair<int, int>> sizes = {{203, 157}, {37, 150}, {2, 1}};
+  const std::vector<std::vector<int32_t>> cases = {CellLabels(203, 157), BandLikeLabels(37, 150, 500), {7, 7 + 65536}};
+  for (size_t i = 0; i < cases.size(); ++i) {
+    SCOPED_TRACE(i);
+    const auto [width, height] = sizes[i];
+    const SuperpixelLabels packed(width, height, cases[i]);
+    const SuperpixelLabels unpacked = SuperpixelLabels::Unpacked(width, height, cases[i]);
+    EXPECT_FALSE(unpacked.paletted());
+    EXPECT_EQ(unpacked.bytes(), cases[i].size() * 4 + unpacked.band_base().size() * 4);
+    EXPECT_EQ(unpacked.banded(), packed.banded());
+    EXPECT_EQ(unpacked.band_base(), packed.band_base());
+    EXPECT_EQ(unpacked.ToVector(), cases[i]);
+    EXPECT_EQ(unpacked.at(height - 1, width - 1), cases[i].back());
+  }
+  EXPECT_THROW(SuperpixelLabels::Unpacked(3, 2, std::vector<int32_t>(5, 0)), Error);
 }
 
 TEST(SuperpixelLabelsTest, SizeMismatchThrowsAndEmptyIsFine) {

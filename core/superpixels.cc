@@ -10,6 +10,7 @@
 #include <cstring>
 #include <mutex>
 #include <sstream>
+#include <utility>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
@@ -481,7 +482,8 @@ void ValidateSuperpixelOptions(const SuperpixelOptions& o) {
   throw ConfigError(message);
 }
 
-SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, const SuperpixelOptions& options) {
+SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, const SuperpixelOptions& options,
+                                 LabelPacking packing) {
   ValidateSuperpixelOptions(options);
   ValidateInputs(image, depth);
   InitLabTablesOnce();
@@ -533,7 +535,8 @@ SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, c
       }
     }
   });
-  map.labels = SuperpixelLabels(map.width, map.height, labels);
+  map.labels = packing == LabelPacking::kPacked ? SuperpixelLabels(map.width, map.height, labels)
+                                                : SuperpixelLabels::Unpacked(map.width, map.height, std::move(labels));
   return map;
 }
 

@@ -66,9 +66,10 @@ struct SuperpixelMap {
 // 2 * region_size_px is merged into its neighbour. Labels are renumbered in row-major block order and, inside
 // a block, in order of first appearance, so the result is deterministic and independent of the thread count
 // (each block runs single-threaded; blocks run in parallel with TBB, so memory beyond the output is only that
-// of the blocks in flight). Every pixel gets a label, also invalid-depth ones. Throws ConfigError for bad
-// options, Error for unusable inputs.
-SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, const SuperpixelOptions& options);
+// of the blocks in flight). Every pixel gets a label, also invalid-depth ones. `packing`: how the labels are held
+// (core/superpixel_labels.h). Throws ConfigError for bad options, Error for unusable inputs.
+SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, const SuperpixelOptions& options,
+                                 LabelPacking packing = LabelPacking::kPacked);
 
 // Throws ConfigError listing every broken rule as "SuperpixelOptions.<field> = v: rule", one per line (an invariant
 // of ComputeSuperpixels; the YAML keys superpixels.* are checked by config/option_table.cc).

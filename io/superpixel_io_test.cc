@@ -122,6 +122,29 @@ TEST(SuperpixelIoTest, RoundTripFullAndRowWindows) {
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir / "sub"), std::filesystem::directory_iterator()), 1);
 }
 
+TEST(SuperpixelIoTest, UnpackedLabelsWriteTheSameFile) {
+  // The tiled runs' superpixel pass writes maps whose labels are not packed (SuperpixelLabels::Unpacked): the file
+  // must be the packed map's, in the banded layout (three bands of 64 rows) and in the int32 one (a band whose
+  // labels span more than a u16).
+  testing::TempDir dir;
+  SuperpixelMap wide;
+  wide.width = 2;
+  wide.height = 1;
+  wide.clusters.resize(65538);
+  wide.labels = SuperpixelLabels(2, 1, {0, 65537});
+  ASSERT_FALSE(wide.labels.banded());
+  for (const SuperpixelMap& packed : {MakeMap(37, 150), MakeMap(203, 157), wide}) {
+    SCOPED_TRACE(std::to_string(packed.width) + "x" + std::to_string(packed.height));
+    SuperpixelMap unpacked = packed;
+    unpacked.labels = SuperpixelLabels::Unpacked(packed.width, packed.height, packed.labels.ToVector());
+    const std::string a = (dir / "packed.spx").string(), b = (dir / "unpacked.spx").string();
+    WriteSuperpixels(a, packed, 11);
+    WriteSuperpixels(b, unpacked, 11);
+    EXPECT_EQ(Slurp(a), Slurp(b));
+    EXPECT_EQ(Slurp(b).substr(0, 8), packed.labels.banded() ? "SACSPX02" : "SACSPX01");
+  }
+}
+
 TEST(SuperpixelIoTest, LabelWindowsAreTheCropOfTheFullMap) {
   testing::TempDir dir;
   const std::string path = (dir / "w.spx").string();

@@ -98,7 +98,7 @@ void LogCacheCheck(const CacheCheck& check, const View& view, const char* what) 
 SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view,
                                        const std::function<const RgbImage&()>& image,
                                        const DepthMap& depth, const SuperpixelOptions& options,
-                                       const ViewIdentity& inputs, bool* computed) {
+                                       const ViewIdentity& inputs, bool* computed, LabelPacking packing) {
   const std::string path = SuperpixelCachePath(cache_dir, view.name);
   const CacheCheck check = CheckSuperpixelCache(cache_dir, view, depth.width, depth.height, options, inputs);
   if (check.current) {
@@ -112,7 +112,7 @@ SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View&
   } else {
     LogCacheCheck(check, view, "superpixels");
   }
-  SuperpixelMap map = ComputeSuperpixels(image(), depth, options);
+  SuperpixelMap map = ComputeSuperpixels(image(), depth, options, packing);
   fs::create_directories(fs::path(path).parent_path());
   WriteSuperpixels(path, map, SuperpixelOptionsHash(options));
   WriteCacheRecord(path, inputs);

@@ -33,10 +33,12 @@ CacheCheck CheckSuperpixelCache(const std::string& cache_dir, const View& view, 
 // Loads the cached superpixels of a view, or computes and stores them (with their input record). A cache whose
 // inputs changed is recomputed and the change logged; one that cannot be read (a corrupt body) is recomputed
 // with a warning. `*computed` tells which happened. `image` gives the view's image, asked only when computing.
+// `packing`: how computed labels are held (LabelPacking::kUnpacked where the map is only cached and dropped).
 SuperpixelMap LoadOrComputeSuperpixels(const std::string& cache_dir, const View& view,
                                        const std::function<const RgbImage&()>& image,
                                        const DepthMap& depth, const SuperpixelOptions& options,
-                                       const ViewIdentity& inputs, bool* computed = nullptr);
+                                       const ViewIdentity& inputs, bool* computed = nullptr,
+                                       LabelPacking packing = LabelPacking::kPacked);
 
 // The colour cache of `view` against the raster size and the view's image identity.
 CacheCheck CheckColourCache(const std::string& cache_dir, const View& view, int width, int height,

@@ -28,13 +28,19 @@ bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRast
   if (!rgb.current && (spx.current || spx.reason != rgb.reason)) LogCacheCheck(rgb, view, "colours");
   const RgbImage image = input.ReadImage(view);
   if (!rgb.current && !image.empty()) {
-    WriteColourCache(cache_dir, view, ResampleColourToDepthGrid(image, size.width, size.height), inputs);
+    // An image on the depth grid already is its own resampling (no copy of 3 bytes per pixel of a 50 Mpx view).
+    if (IsOnDepthGrid(image, size.width, size.height)) {
+      WriteColourCache(cache_dir, view, image, inputs);
+    } else {
+      WriteColourCache(cache_dir, view, ResampleColourToDepthGrid(image, size.width, size.height), inputs);
+    }
   }
   if (spx.current) return false;  // colours only: no depth needed
   const DepthMap depth = input.ReadDepthMap(view);
   bool computed = false;
+  // The map is written to the cache and dropped: its labels are not packed (LabelPacking).
   LoadOrComputeSuperpixels(cache_dir, view, [&]() -> const RgbImage& { return image; }, depth, options, inputs,
-                           &computed);
+                           &computed, LabelPacking::kUnpacked);
   return computed;
 }
 
