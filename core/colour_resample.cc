@@ -21,4 +21,9 @@ RgbImage ResampleColourToDepthGrid(const RgbImage& image, int depth_width, int d
   return out;
 }
 
+RgbImage ColoursOnDepthGrid(RgbImage image, int depth_width, int depth_height) {
+  if (!image.empty() && image.width == depth_width && image.height == depth_height) return image;
+  return ResampleColourToDepthGrid(image, depth_width, depth_height);
+}
+
 }  // namespace sacfuse

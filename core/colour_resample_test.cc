@@ -1,6 +1,7 @@
 #include "core/colour_resample.h"
 
 #include <cstdint>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -25,17 +26,22 @@ TEST(ColourResampleTest, HalfSizeGridTakesThePixelUnderEachCentre) {
   ASSERT_EQ(out.height, 1);
   EXPECT_EQ(out.at(0, 0, 0), 110);
   EXPECT_EQ(out.at(0, 1, 2), 132);
-  EXPECT_FALSE(IsOnDepthGrid(CodedImage(), 2, 1));
+  EXPECT_EQ(ColoursOnDepthGrid(CodedImage(), 2, 1).data, out.data);
 }
 
 TEST(ColourResampleTest, AnImageOnTheDepthGridIsItsOwnResampling) {
-  // The tiled runs write such an image to the colour cache as it is (jobs/tile_fusion.cc): the same bytes.
+  // The colour caches and the untiled runs take such an image as it is (ColoursOnDepthGrid): the same bytes, and
+  // the same buffer, not a copy.
   const RgbImage image = CodedImage();
-  ASSERT_TRUE(IsOnDepthGrid(image, 4, 2));
   const RgbImage out = ResampleColourToDepthGrid(image, 4, 2);
   EXPECT_EQ(out.channels, image.channels);
   EXPECT_EQ(out.data, image.data);
-  EXPECT_FALSE(IsOnDepthGrid(RgbImage(), 0, 0));
+  RgbImage given = CodedImage();
+  const uint8_t* buffer = given.data.data();
+  const RgbImage taken = ColoursOnDepthGrid(std::move(given), 4, 2);
+  EXPECT_EQ(taken.data, image.data);
+  EXPECT_EQ(taken.data.data(), buffer);
+  EXPECT_TRUE(ColoursOnDepthGrid(RgbImage(), 0, 0).empty());
 }
 
 }  // namespace

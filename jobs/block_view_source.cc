@@ -3,6 +3,7 @@
 #include <atomic>
 #include <chrono>
 #include <optional>
+#include <utility>
 
 #include "core/colour_resample.h"
 #include "core/error.h"
@@ -50,7 +51,8 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
       out->graphs[i] = input_.ReadConsistencyGraph(view);
     }
     if (!needs.colours_one_view_at_a_time) {
-      out->colours[i] = ResampleColourToDepthGrid(read_image(), depth.width, depth.height);
+      read_image();  // the image is not needed after this
+      out->colours[i] = ColoursOnDepthGrid(std::move(*image), depth.width, depth.height);
     }
   }, [&](size_t loaded) {
     if (progress_) progress_(needs.superpixels ? "load + superpixels" : "load", loaded, views.size());
@@ -68,7 +70,7 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
 
 RgbImage BlockViewSource::LoadColours(const LoadedViews& loaded, size_t i) const {
   const DepthMap& depth = loaded.depths[i];
-  return ResampleColourToDepthGrid(input_.ReadImage(input_.views()[loaded.view_ids[i]]), depth.width, depth.height);
+  return ColoursOnDepthGrid(input_.ReadImage(input_.views()[loaded.view_ids[i]]), depth.width, depth.height);
 }
 
 }  // namespace sacfuse

@@ -1,6 +1,7 @@
 #include "jobs/tile_fusion.h"
 
 #include <atomic>
+#include <utility>
 #include <vector>
 
 #include "core/colour_resample.h"
@@ -26,21 +27,18 @@ bool EnsureViewCaches(const DepthBlock& input, const View& view, const DepthRast
   const CacheCheck rgb = CheckColourCache(cache_dir, view, size.width, size.height, inputs);
   if (spx.current && rgb.current) return false;
   if (!rgb.current && (spx.current || spx.reason != rgb.reason)) LogCacheCheck(rgb, view, "colours");
-  const RgbImage image = input.ReadImage(view);
-  if (!rgb.current && !image.empty()) {
-    // An image on the depth grid already is its own resampling (no copy of 3 bytes per pixel of a 50 Mpx view).
-    if (IsOnDepthGrid(image, size.width, size.height)) {
-      WriteColourCache(cache_dir, view, image, inputs);
-    } else {
-      WriteColourCache(cache_dir, view, ResampleColourToDepthGrid(image, size.width, size.height), inputs);
-    }
-  }
-  if (spx.current) return false;  // colours only: no depth needed
-  const DepthMap depth = input.ReadDepthMap(view);
+  RgbImage image = input.ReadImage(view);
   bool computed = false;
-  // The map is written to the cache and dropped: its labels are not packed (LabelPacking).
-  LoadOrComputeSuperpixels(cache_dir, view, [&]() -> const RgbImage& { return image; }, depth, options, inputs,
-                           &computed, LabelPacking::kUnpacked);
+  if (!spx.current) {
+    const DepthMap depth = input.ReadDepthMap(view);
+    // The map is written to the cache and dropped: its labels are not packed (LabelPacking).
+    LoadOrComputeSuperpixels(cache_dir, view, [&]() -> const RgbImage& { return image; }, depth, options, inputs,
+                             &computed, LabelPacking::kUnpacked);
+  }
+  // Last, so that the image can be handed over (ColoursOnDepthGrid).
+  if (!rgb.current && !image.empty()) {
+    WriteColourCache(cache_dir, view, ColoursOnDepthGrid(std::move(image), size.width, size.height), inputs);
+  }
   return computed;
 }
 
