@@ -168,6 +168,9 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
            "average: passes of the mean, each from the previous mean");
   s.AddDouble("fusion.combine_later_pass_gate", &f.combine_later_pass_gate, Affects("-", Closed(0.05, 1), kSac),
               "average: later passes' gate around the previous mean, x the gate (1 = all of it)");
+  s.AddDouble("fusion.combine_later_pass_min_shift_gsd", &f.combine_later_pass_min_shift_gsd,
+              Affects("GSD", AtLeast(0), kSac),
+              "average: a later pass only where the previous one moved the centre at least this far (0 = always)");
   s.AddBool("fusion.combine_anchors", &f.combine_anchors, Affects("-", {}, kSac),
             "average: combine the anchors exactly, interpolate between them where smooth (false = every pixel)");
   s.AddInt("fusion.combine_max_views", &f.combine_max_views, Affects("views", Closed(1, 64), kSac),

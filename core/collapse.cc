@@ -98,6 +98,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   combine_options.surface = options.combine_surface == "secant" ? CombineSurface::kSecant : CombineSurface::kPlane;
   combine_options.passes = options.combine_passes;
   combine_options.later_pass_gate = options.combine_later_pass_gate;
+  combine_options.later_pass_min_shift_gsd = options.combine_later_pass_min_shift_gsd;
   const bool best_view = options.collapse == "best_view";
   // Per patch of the batch: its points in row order and the row of each.
   struct PatchOutput {

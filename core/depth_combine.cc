@@ -200,7 +200,13 @@ CombinedDepth CombineDepth(const std::vector<SacView>& views, uint32_t v, double
     return result;
   };
   CombinedDepth out = pass(depth_m, gate_m);
-  for (int p = 1; p < options.passes && out.support > 1; ++p) out = pass(out.depth_m, options.later_pass_gate * gate_m);
+  double centre_m = depth_m;
+  for (int p = 1; p < options.passes && out.support > 1; ++p) {
+    // Converged: the centre moved less than later_pass_min_shift_gsd local GSDs (see the header).
+    if (std::abs(out.depth_m - centre_m) < options.later_pass_min_shift_gsd * gsd) break;
+    centre_m = out.depth_m;
+    out = pass(centre_m, options.later_pass_gate * gate_m);
+  }
   return out;
 }
 

@@ -72,6 +72,15 @@
 //    x2.5 72.17 -> 71.81 (its noise is truncated), and no half-way line of issue 12 is crossed, so it is not the
 //    default. Only near a depth jump of the own view (README) it keeps most of the aerial-bench gain and still
 //    loses 0.1-0.2 points on our error-scale-2.5 blocks.
+//    `later_pass_min_shift_gsd` (`fusion.combine_later_pass_min_shift_gsd`, default 1; issue 13): a later pass is
+//    made only where the previous one moved the centre by at least this many local GSDs; where it moved less, the
+//    later pass would start from almost the same point on the ray and find almost the same surfaces. On a
+//    full-scale Dortmund tile 52 % of the first passes move the centre less than 1 GSD (28 % less than 0.5, 83 %
+//    less than 2); aerial-bench Montpellier 70 %, its x2.5 block 39 % (noisier depths move further). Measured
+//    2026-11-28 (README "Where SAC's time goes"): Dortmund tile 6_6 CPU -4 %; F1 at 2x GSD 0 (always) -> 1 -> 2,
+//    aerial-bench Montpellier 0.9765 -> 0.9767 -> 0.9766, x2.5 0.9559 -> 0.9559 -> 0.9558, Zurich 0.9661 ->
+//    0.9663 -> 0.9664, x2.5 0.9499 -> 0.9500 -> 0.9493, St Barth 0.9470 -> 0.9470 -> 0.9470, x2.5 0.9144 ->
+//    0.9144 -> 0.9136: 1 keeps every block, 2 loses at x2.5.
 //  * Robustness: only neighbours whose t_b lies within the gate of d take part (the others see another surface,
 //    an occluder or a blunder): `gate_gsd` local GSDs, widened to `gate_sigmas` sigma of v's own depth (k_v d gsd_v(d)) where
 //    the estimated noise is larger. Grazing intersections (|f'| < 0.2) are skipped.
@@ -126,6 +135,8 @@ struct DepthCombineOptions {
   // fraction of the gate of it and within the gate of the own depth (see the header).
   int passes = 2;
   double later_pass_gate = 1.0;
+  // A later pass is made only when the previous one moved the centre by at least this many local GSDs (0 = always).
+  double later_pass_min_shift_gsd = kCombineLaterPassMinShiftGsd;
 };
 
 // Depth of `depth` at image coordinates (u, v) (corner convention), bilinear over the 2x2 pixel centres around

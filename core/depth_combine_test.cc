@@ -354,6 +354,38 @@ TEST(CombineDepthTest, ASecondPassFromTheMeanCarriesTheNeighboursLessFar) {
   EXPECT_NEAR(error(2, Eigen::Vector3d::UnitZ()), 1.0 / 3.0, 1e-3);
 }
 
+TEST(CombineDepthTest, ALaterPassOnlyWhereThePreviousMovedTheCentreFarEnough) {
+  // The scene of the test above: the first pass moves the centre from the own depth (1 m long) by 0.719 m, 2.13
+  // local GSDs (101 m / 300 px = 0.337 m). A second pass is made when that is at least the minimum shift.
+  MethodBlock block;
+  const double shifts_m[3] = {0.0, 40.0, 50.0};
+  for (uint32_t i = 0; i < 3; ++i) {
+    const View view = NadirView(i, kEast + shifts_m[i], kNorth, 100.0, 400, 200, 300.0);
+    block.Add(view, PlaneDepth(view));
+  }
+  const auto views = block.SacViews();
+  const int row = 100, col = 200;
+  const double own_m = block.depths[0].at(row, col) + 1.0;
+  const Eigen::Vector3d tilted(std::sin(10.0 * M_PI / 180.0), 0.0, std::cos(10.0 * M_PI / 180.0));
+  DepthCombineOptions options;
+  options.gate_gsd = 12.0;
+  auto combined = [&](int passes, double min_shift_gsd) {
+    options.passes = passes;
+    options.later_pass_min_shift_gsd = min_shift_gsd;
+    return CombineDepth(views, 0, col + 0.5, row + 0.5, own_m, {1, 2}, {}, options, tilted).depth_m;
+  };
+  const double one = combined(1, 0.0), two = combined(2, 0.0);
+  const double gsd_m = views[0].GsdAt(own_m);
+  ASSERT_GT(std::abs(one - own_m), 2.0 * gsd_m);
+  ASSERT_LT(std::abs(one - own_m), 2.3 * gsd_m);
+  ASSERT_GT(std::abs(two - one), 0.01);
+  EXPECT_EQ(combined(2, 2.5), one);  // moved less than 2.5 GSD: converged, no second pass
+  EXPECT_EQ(combined(2, 2.0), two);  // moved more than 2 GSD: the second pass
+  EXPECT_EQ(combined(2, kCombineLaterPassMinShiftGsd), two);
+  EXPECT_EQ(combined(4, 2.5), one);
+  EXPECT_EQ(DepthCombineOptions().later_pass_min_shift_gsd, kCombineLaterPassMinShiftGsd);
+}
+
 TEST(CombineDepthTest, LaterPassesTakeTheNeighboursWithinTheirGateOfTheMean) {
   // The own view and eight neighbours exact, a ninth 0.95 gate long (another surface just inside the gate). The
   // first pass takes all ten: mean 0.095 gate. Seen from there the ninth lies 0.855 gate away: a second pass with

@@ -43,6 +43,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.OneOf("SacOptions.combine_surface", o.combine_surface, {"plane", "secant"});
   c.InRange("SacOptions.combine_passes", o.combine_passes, 1, 4);
   c.InRange("SacOptions.combine_later_pass_gate", o.combine_later_pass_gate, 0.05, 1.0);
+  c.AtLeast("SacOptions.combine_later_pass_min_shift_gsd", o.combine_later_pass_min_shift_gsd, 0.0);
   c.InRange("SacOptions.combine_max_views", o.combine_max_views, 1, 64);
   c.InRange("SacOptions.combine_max_view_angle_deg", o.combine_max_view_angle_deg, 0.0, 180.0);
   c.ThrowIfFailed("SAC options");

@@ -10,6 +10,8 @@ namespace sacfuse {
 // Default of SacOptions::combine_slope_step_sigmas, also the default of the structs that take it over
 // (DepthCombineOptions, ViewNoiseOptions), so a test with default options runs what `sacfuse run` runs.
 inline constexpr double kCombineSlopeStepSigmas = 3.0;
+// The default of SacOptions::combine_later_pass_min_shift_gsd (and of DepthCombineOptions'), local GSDs.
+inline constexpr double kCombineLaterPassMinShiftGsd = 1.0;
 
 struct SacOptions {
   // --- Neighbour views, chosen from geometry (not a fixed list).
@@ -99,6 +101,9 @@ struct SacOptions {
   // previous mean (and within the whole gate of the own depth). 1 (the default) = the whole gate; 0.75 gains on
   // aerial-bench and loses on our bench (core/depth_combine.h).
   double combine_later_pass_gate = 1.0;
+  // average: a later pass only where the previous one moved the ray's centre by at least this many local GSDs
+  // (0 = every pass always; core/depth_combine.h). >= 0
+  double combine_later_pass_min_shift_gsd = kCombineLaterPassMinShiftGsd;
   // average: combine exactly only the anchors of each patch (every second row and column) and interpolate the
   // other depth maps' mean surface for the emitted pixels between them where it is smooth (core/combine_anchors.h);
   // false = every emitted pixel exactly.
