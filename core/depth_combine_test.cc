@@ -324,28 +324,41 @@ TEST(CombineDepthTest, ThePlaneKeepsTheAveragedDepthFromFollowingTheOwnError) {
   EXPECT_EQ(grazing.depth_m, secant.depth_m);
 }
 
-TEST(CombineDepthTest, ASecondPassFromTheMeanCarriesTheNeighboursLessFar) {
-  // Flat ground seen from 100 m by the own view and two exact neighbours 40 and 50 m east (22-27 deg: along the
-  // plane). The own depth is 1 m too long and the plane's normal 10 deg off: the first pass carries each
-  // neighbour's surface point ~0.4-0.5 m along the wrong plane; the second starts from the first mean, nearer the
-  // ground, carries it less far and lands nearer. With the true normal both passes are exact for the neighbours.
-  MethodBlock block;
-  const double shifts_m[3] = {0.0, 40.0, 50.0};
-  for (uint32_t i = 0; i < 3; ++i) {
-    const View view = NadirView(i, kEast + shifts_m[i], kNorth, 100.0, 400, 200, 300.0);
-    block.Add(view, PlaneDepth(view));
+// Flat ground seen from 100 m by the own view and two exact neighbours 40 and 50 m east (22-27 deg: along the
+// plane); the pixel's plane normal is 10 deg off.
+struct WrongPlaneScene {
+  WrongPlaneScene() {
+    const double shifts_m[3] = {0.0, 40.0, 50.0};
+    for (uint32_t i = 0; i < 3; ++i) {
+      const View view = NadirView(i, kEast + shifts_m[i], kNorth, 100.0, 400, 200, 300.0);
+      block.Add(view, PlaneDepth(view));
+    }
+    views = block.SacViews();
+    truth_m = block.depths[0].at(kRow, kCol);
   }
-  const auto views = block.SacViews();
-  const int row = 100, col = 200;
-  const double truth = block.depths[0].at(row, col);
-  const Eigen::Vector3d tilted(std::sin(10.0 * M_PI / 180.0), 0.0, std::cos(10.0 * M_PI / 180.0));
+  // The combined depth of pixel (kRow, kCol) from the own depth `own_m`.
+  double Combine(double own_m, const DepthCombineOptions& options, const Eigen::Vector3d& normal) const {
+    return CombineDepth(views, 0, kCol + 0.5, kRow + 0.5, own_m, {1, 2}, {}, options, normal).depth_m;
+  }
+  static constexpr int kRow = 100, kCol = 200;
+  const Eigen::Vector3d tilted{std::sin(10.0 * M_PI / 180.0), 0.0, std::cos(10.0 * M_PI / 180.0)};
+  MethodBlock block;
+  std::vector<SacView> views;
+  double truth_m = 0.0;
+};
+
+TEST(CombineDepthTest, ASecondPassFromTheMeanCarriesTheNeighboursLessFar) {
+  // The own depth is 1 m too long: the first pass carries each neighbour's surface point ~0.4-0.5 m along the
+  // wrong plane; the second starts from the first mean, nearer the ground, carries it less far and lands nearer.
+  // With the true normal both passes are exact for the neighbours.
+  const WrongPlaneScene s;
   DepthCombineOptions options;
   options.gate_gsd = 12.0;
   auto error = [&](int passes, const Eigen::Vector3d& normal) {
     options.passes = passes;
-    return CombineDepth(views, 0, col + 0.5, row + 0.5, truth + 1.0, {1, 2}, {}, options, normal).depth_m - truth;
+    return s.Combine(s.truth_m + 1.0, options, normal) - s.truth_m;
   };
-  const double one = error(1, tilted), two = error(2, tilted);
+  const double one = error(1, s.tilted), two = error(2, s.tilted);
   // The own depth's 1 m weighs a third of each mean (1/3 m); what the wrong plane adds shrinks with the pass.
   // Measured: 0.281 m after one pass, 0.319 m after two.
   EXPECT_LT(std::abs(two - 1.0 / 3.0), 0.5 * std::abs(one - 1.0 / 3.0)) << one << " " << two;
@@ -357,25 +370,17 @@ TEST(CombineDepthTest, ASecondPassFromTheMeanCarriesTheNeighboursLessFar) {
 TEST(CombineDepthTest, ALaterPassOnlyWhereThePreviousMovedTheCentreFarEnough) {
   // The scene of the test above: the first pass moves the centre from the own depth (1 m long) by 0.719 m, 2.13
   // local GSDs (101 m / 300 px = 0.337 m). A second pass is made when that is at least the minimum shift.
-  MethodBlock block;
-  const double shifts_m[3] = {0.0, 40.0, 50.0};
-  for (uint32_t i = 0; i < 3; ++i) {
-    const View view = NadirView(i, kEast + shifts_m[i], kNorth, 100.0, 400, 200, 300.0);
-    block.Add(view, PlaneDepth(view));
-  }
-  const auto views = block.SacViews();
-  const int row = 100, col = 200;
-  const double own_m = block.depths[0].at(row, col) + 1.0;
-  const Eigen::Vector3d tilted(std::sin(10.0 * M_PI / 180.0), 0.0, std::cos(10.0 * M_PI / 180.0));
+  const WrongPlaneScene s;
+  const double own_m = s.truth_m + 1.0;
   DepthCombineOptions options;
   options.gate_gsd = 12.0;
   auto combined = [&](int passes, double min_shift_gsd) {
     options.passes = passes;
     options.later_pass_min_shift_gsd = min_shift_gsd;
-    return CombineDepth(views, 0, col + 0.5, row + 0.5, own_m, {1, 2}, {}, options, tilted).depth_m;
+    return s.Combine(own_m, options, s.tilted);
   };
   const double one = combined(1, 0.0), two = combined(2, 0.0);
-  const double gsd_m = views[0].GsdAt(own_m);
+  const double gsd_m = s.views[0].GsdAt(own_m);
   ASSERT_GT(std::abs(one - own_m), 2.0 * gsd_m);
   ASSERT_LT(std::abs(one - own_m), 2.3 * gsd_m);
   ASSERT_GT(std::abs(two - one), 0.01);
