@@ -177,6 +177,8 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
            "average: views consulted per view");
   s.AddDouble("fusion.combine_max_view_angle_deg", &f.combine_max_view_angle_deg, Affects("deg", Closed(0, 180), kSac),
               "average: max angle between those views' directions, deg");
+  s.AddDouble("fusion.combine_region_m", &f.combine_region_m, Affects("m", Closed(0, 1e6), kSac),
+              "average: side of the square regions the consulted views are chosen for (0 = one per view)");
   s.AddString("fusion.superpixel_cache_dir", &c->fusion.superpixel_cache_dir, Neutral("-", AnyText()),
               "where superpixels are stored and reused; empty = <output.dir>/superpixels");
   SuperpixelOptions& sp = f.superpixels;

@@ -209,7 +209,7 @@ TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
       "fusion.combine_gate_sigmas: 3.0\nfusion.combine_slope_step_sigmas: 3.0\nfusion.combine_weights: \"view\"\n"
       "fusion.combine_surface: \"plane\"\nfusion.combine_passes: 2\nfusion.combine_later_pass_gate: 1.0\n"
       "fusion.combine_later_pass_min_shift_gsd: 1.0\nfusion.combine_anchors: true\nfusion.combine_max_views: 40\n"
-      "fusion.combine_max_view_angle_deg: 65.0\n"
+      "fusion.combine_max_view_angle_deg: 65.0\nfusion.combine_region_m: 128.0\n"
       "superpixels.region_size_px: 16\nsuperpixels.ruler: 10.0\nsuperpixels.iterations: 4\n"
       "superpixels.algorithm: \"fast\"\nsuperpixels.block_size_px: 1024\nsuperpixels.depth_weight: 0.0\n"
       "consistency.depth_threshold_rel: 0.01\ndisparity_normal.disparity_threshold_px: 0.5\n"

@@ -77,8 +77,8 @@ bool ChoiceCovers(const std::vector<SacView>& views, uint32_t v, const Eigen::Ve
 }  // namespace
 
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
-                       const std::vector<uint32_t>& chosen_view, const std::vector<uint32_t>& redundancy_judges,
-                       const std::vector<std::vector<uint32_t>>& combine_views,
+                       const std::vector<uint32_t>& chosen_view, const ConsultedViews& redundancy_judges,
+                       const ConsultedViews& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
                        const SacOptions& options, const OwnedRegion& owner, const RgbImage* colours,
                        PointSink& sink) {
@@ -148,8 +148,8 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
         // The better view is asked first: the pixel it drops a pixel for is the most precise one there, which is
         // usually emitted and so judged anyway, where the chain's target is often itself redundant and would be
         // judged for nothing.
-        if (best_view && BetterViewEmits(views, v, point, d, redundancy_judges, noise_factor, nodes, chosen_view,
-                                         verdicts, options)) {
+        if (best_view && BetterViewEmits(views, v, point, d, redundancy_judges.At(v, point), noise_factor, nodes,
+                                         chosen_view, verdicts, options)) {
           ++stats.redundant;
           continue;
         }
@@ -177,8 +177,8 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           pending.push_back({out.size(), row, col, d, node_id});
         } else if (combine) {
           const Eigen::Vector3d plane_normal = nodes.nodes[node_id].normal_in_world.cast<double>();
-          const CombinedDepth refined = CombineDepth(views, v, col + 0.5, row + 0.5, d, combine_views[v], noise_factor,
-                                                     combine_options, plane_normal);
+          const CombinedDepth refined = CombineDepth(views, v, col + 0.5, row + 0.5, d, combine_views.At(v, point),
+                                                     noise_factor, combine_options, plane_normal);
           if (anchored) anchors.Set(row, col, refined);
           p.point_in_world = PixelPoint(view, row, col, refined.depth_m);
         }
@@ -195,8 +195,9 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
                               &depth_m)) {
         ++stats.interpolated;
       } else {
-        const CombinedDepth exact = CombineDepth(views, v, q.col + 0.5, q.row + 0.5, q.depth, combine_views[v],
-                                                 noise_factor, combine_options, plane_normal);
+        const CombinedDepth exact =
+            CombineDepth(views, v, q.col + 0.5, q.row + 0.5, q.depth, combine_views.At(v, out[q.index].point_in_world),
+                         noise_factor, combine_options, plane_normal);
         anchors.Set(q.row, q.col, exact);
         depth_m = exact.depth_m;
       }

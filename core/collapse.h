@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/consulted_views.h"
 #include "core/owned_region.h"
 #include "core/point.h"
 #include "core/point_verdicts.h"
@@ -50,13 +51,14 @@ struct CollapseStats {
 
 // Emits the fused points of view `v` to `sink` in row order (deterministic for any thread count).
 // `redundancy_judges`: the views searched for a better view (core/redundancy.h, RedundancySearchOrder);
-// `combine_views` (fusion.combine: average) refine the emitted depths, weighted with the views'
+// `combine_views` (fusion.combine: average) refine the emitted depths (both per pixel, core/consulted_views.h),
+// weighted with the views'
 // `noise_factor` (core/view_noise.h; empty = equal). Pixels whose own point `owner` does not own are skipped and
 // not counted (core/owned_region.h; patches wholly inside or outside it are decided at once). The points take
 // their colours from `colours` (view v's, as SacView::image; null = grey).
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
-                       const std::vector<uint32_t>& chosen_view, const std::vector<uint32_t>& redundancy_judges,
-                       const std::vector<std::vector<uint32_t>>& combine_views,
+                       const std::vector<uint32_t>& chosen_view, const ConsultedViews& redundancy_judges,
+                       const ConsultedViews& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
                        const SacOptions& options, const OwnedRegion& owner, const RgbImage* colours,
                        PointSink& sink);

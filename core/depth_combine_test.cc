@@ -195,7 +195,7 @@ TEST(ViewNoiseTest, RecoversTheRatioOfDepthNoiseBetweenViews) {
   ViewNoiseOptions options;
   options.sample_step_px = 2;
   options.max_samples_per_view = 0;  // the whole step-2 grid (the cap is tested below)
-  const std::vector<double> k = EstimateViewNoiseFactors(s.views, others, options);
+  const std::vector<double> k = EstimateViewNoiseFactors(s.views, ConsultedViews(others), options);
   ASSERT_EQ(k.size(), 4u);
   EXPECT_NEAR(k[1] / k[0], 1.0, 0.15);
   EXPECT_NEAR(k[3] / k[2], 1.0, 0.15);
@@ -205,16 +205,16 @@ TEST(ViewNoiseTest, RecoversTheRatioOfDepthNoiseBetweenViews) {
   EXPECT_NEAR(k[0] * scale, 0.2, 0.03);
   EXPECT_NEAR(k[2] * scale, 0.4, 0.06);
   // Without overlapping views there is nothing to estimate: all 1.
-  const std::vector<double> alone = EstimateViewNoiseFactors(s.views, {{}, {}, {}, {}}, options);
+  const std::vector<double> alone = EstimateViewNoiseFactors(s.views, ConsultedViews({{}, {}, {}, {}}), options);
   for (double x : alone) EXPECT_EQ(x, 1.0);
   // The sample cap widens the step on these 120 x 90 views: ~300 samples per view (step 6) still give the ratio;
   // ~20 (step 24) leave every pair below min_samples (50), so nothing is estimated.
   options.max_samples_per_view = 300;
-  const std::vector<double> capped = EstimateViewNoiseFactors(s.views, others, options);
+  const std::vector<double> capped = EstimateViewNoiseFactors(s.views, ConsultedViews(others), options);
   ASSERT_EQ(capped.size(), 4u);
   EXPECT_NEAR((capped[2] + capped[3]) / (capped[0] + capped[1]), 2.0, 0.4);
   options.max_samples_per_view = 20;
-  for (double x : EstimateViewNoiseFactors(s.views, others, options)) EXPECT_EQ(x, 1.0);
+  for (double x : EstimateViewNoiseFactors(s.views, ConsultedViews(others), options)) EXPECT_EQ(x, 1.0);
 }
 
 // Wide nadir views (f = 300 px at 100 m: GSD 0.33 m) with baselines of 0.5-1 flying heights, so one GSD along a
@@ -435,9 +435,9 @@ TEST(ViewNoiseTest, SecondPassWithTheCombinesSlopeStep) {
   options.sample_step_px = 4;
   options.max_samples_per_view = 0;  // the whole step-4 grid (the default cap would widen it on 400 x 200 views)
   options.slope_step_sigmas = 0.0;
-  const std::vector<double> one_pass = EstimateViewNoiseFactors(s.views, others, options);
+  const std::vector<double> one_pass = EstimateViewNoiseFactors(s.views, ConsultedViews(others), options);
   options.slope_step_sigmas = 2.0;
-  const std::vector<double> two_passes = EstimateViewNoiseFactors(s.views, others, options);
+  const std::vector<double> two_passes = EstimateViewNoiseFactors(s.views, ConsultedViews(others), options);
   const double scale = DepthNoiseScale(s.views[0], WideViews::kHeightM);
   ASSERT_EQ(one_pass.size(), s.views.size());
   ASSERT_EQ(two_passes.size(), s.views.size());
@@ -466,9 +466,9 @@ TEST(ViewNoiseTest, TheSecondPassGateFollowsTheNoise) {
   options.sample_step_px = 2;
   options.max_samples_per_view = 0;
   options.gate_sigmas = 0.0;
-  const std::vector<double> fixed_gate = EstimateViewNoiseFactors(s.views, others, options);
+  const std::vector<double> fixed_gate = EstimateViewNoiseFactors(s.views, ConsultedViews(others), options);
   options.gate_sigmas = 2.5;
-  const std::vector<double> noise_gate = EstimateViewNoiseFactors(s.views, others, options);
+  const std::vector<double> noise_gate = EstimateViewNoiseFactors(s.views, ConsultedViews(others), options);
   ASSERT_EQ(fixed_gate.size(), 4u);
   ASSERT_EQ(noise_gate.size(), 4u);
   // Measured sigma (m), fixed gate -> noise gate: 0.295 -> 0.241, 0.284 -> 0.226, 0.750 -> 0.790, 0.760 -> 0.799

@@ -109,7 +109,7 @@ bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, int row, int col
 }  // namespace
 
 PointVerdicts::PointVerdicts(const std::vector<SacView>& views, std::vector<std::vector<uint32_t>> neighbors,
-                             std::vector<std::vector<uint32_t>> judges, std::vector<double> noise_factor,
+                             ConsultedViews judges, std::vector<double> noise_factor,
                              const SacOptions& options)
     : views_(views),
       neighbors_(std::move(neighbors)),
@@ -177,8 +177,9 @@ PointVerdict PointVerdicts::Judge(uint32_t v, int row, int col) const {
     if (hits[k].inside) hits[k].stored_depth_m = views_[near[k]].depth->at(hits[k].row, hits[k].col);
   }
   if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_)) return PointVerdict::kOutlier;
-  if (options_.free_space_min_views > 0 && InFreeSpace(views_, v, row, col, point, d, judges_[v], neighbor_slot_[v],
-                                                       hits.data(), ceilings_, noise_factor_, options_)) {
+  if (options_.free_space_min_views > 0 &&
+      InFreeSpace(views_, v, row, col, point, d, judges_.At(v, point), neighbor_slot_[v], hits.data(), ceilings_,
+                  noise_factor_, options_)) {
     return PointVerdict::kFreeSpace;
   }
   return PointVerdict::kPasses;

@@ -29,6 +29,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/consulted_views.h"
 #include "core/sac_options.h"
 #include "core/sac_view.h"
 
@@ -52,13 +53,14 @@ class DepthCeiling {
 enum class PointVerdict : uint8_t { kInvalid = 0, kOutlier = 1, kFreeSpace = 2, kPasses = 3 };
 
 // The verdicts of every pixel of every view of `views` (a tile's halo pixels too: the collapse consults them).
-// `neighbors[v]`: the views that judge v's outliers; `judges[v]`: those that judge its free space; `noise_factor` as
-// core/view_noise.h (empty = none). Keeps a reference to `views` (which must outlive it) and copies the rest.
+// `neighbors[v]`: the views that judge v's outliers; `judges`: those that judge its free space (per pixel, the
+// combine's; core/consulted_views.h); `noise_factor` as core/view_noise.h (empty = none). Keeps a reference to
+// `views` (which must outlive it) and copies the rest.
 // At() may be called from many threads at once.
 class PointVerdicts {
  public:
   PointVerdicts(const std::vector<SacView>& views, std::vector<std::vector<uint32_t>> neighbors,
-                std::vector<std::vector<uint32_t>> judges, std::vector<double> noise_factor, const SacOptions& options);
+                ConsultedViews judges, std::vector<double> noise_factor, const SacOptions& options);
 
   // The verdict of depth pixel (row, col) of `view`, judged now if it was not yet.
   PointVerdict At(uint32_t view, int row, int col) const;
@@ -67,7 +69,8 @@ class PointVerdicts {
   PointVerdict Judge(uint32_t v, int row, int col) const;
 
   const std::vector<SacView>& views_;
-  std::vector<std::vector<uint32_t>> neighbors_, judges_;
+  std::vector<std::vector<uint32_t>> neighbors_;
+  ConsultedViews judges_;
   std::vector<std::vector<int>> neighbor_slot_;  // [v][b]: index of b in neighbors_[v], or -1
   std::vector<double> noise_factor_;
   std::vector<DepthCeiling> ceilings_;  // per view (empty rasters when the free-space test is off)

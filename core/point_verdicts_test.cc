@@ -62,16 +62,16 @@ TEST_F(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses
   SacOptions options;
   options.min_consistent_views = 1;  // isolate the free-space test
   options.free_space_min_views = 2;
-  const PointVerdicts verdicts(views, others, others, {}, options);
+  const PointVerdicts verdicts(views, others, ConsultedViews(others), {}, options);
   EXPECT_EQ(verdicts.At(0, 45, 60), PointVerdict::kFreeSpace);  // both others see the ground behind
   EXPECT_EQ(verdicts.At(0, 10, 10), PointVerdict::kPasses);
   EXPECT_EQ(verdicts.At(1, 45, 60), PointVerdict::kPasses);
   // Asking for three views that see through it: only two can, so it passes that test.
   options.free_space_min_views = 3;
-  EXPECT_EQ(PointVerdicts(views, others, others, {}, options).At(0, 45, 60), PointVerdict::kPasses);
+  EXPECT_EQ(PointVerdicts(views, others, ConsultedViews(others), {}, options).At(0, 45, 60), PointVerdict::kPasses);
   // Off: nothing is free space.
   options.free_space_min_views = 0;
-  EXPECT_EQ(PointVerdicts(views, others, others, {}, options).At(0, 45, 60), PointVerdict::kPasses);
+  EXPECT_EQ(PointVerdicts(views, others, ConsultedViews(others), {}, options).At(0, 45, 60), PointVerdict::kPasses);
 }
 
 // Judges that are not outlier neighbours are read through the depth ceiling first (DepthCeiling): a pit 20 m deep
@@ -86,8 +86,8 @@ TEST_F(PointVerdictsTest, FreeSpaceThroughTheDepthCeilingMatchesEveryPixelRead) 
   options.free_space_min_views = 1;
   options.free_space_window_px = 0;  // the pit is one pixel: with a window its neighbours would agree
   const std::vector<std::vector<uint32_t>> none(pit_views.size());
-  const PointVerdicts through_ceiling(pit_views, none, others, {}, options);
-  const PointVerdicts every_read(pit_views, others, others, {}, options);
+  const PointVerdicts through_ceiling(pit_views, none, ConsultedViews(others), {}, options);
+  const PointVerdicts every_read(pit_views, others, ConsultedViews(others), {}, options);
   EXPECT_EQ(through_ceiling.At(0, 10, 40), PointVerdict::kFreeSpace);
   EXPECT_EQ(through_ceiling.At(0, 10, 41), PointVerdict::kPasses);
   EXPECT_EQ(through_ceiling.At(0, 45, 60), PointVerdict::kFreeSpace);  // the floater
@@ -114,7 +114,7 @@ TEST_F(PointVerdictsTest, AnEdgeOnePixelAwayInTheJudgesIsNoFreeSpaceUnlessTheOwn
   ASSERT_EQ(options.free_space_edge_band_px, 2);
   auto verdict = [&](const SyntheticBlock& block, const SacOptions& o, int row, int col) {
     const auto block_views = block.SacViews();
-    return PointVerdicts(block_views, others, others, {}, o).At(0, row, col);
+    return PointVerdicts(block_views, others, ConsultedViews(others), {}, o).At(0, row, col);
   };
   EXPECT_EQ(verdict(pits, options, 10, 70), PointVerdict::kPasses);
   EXPECT_EQ(verdict(pits, options, 10, 75), PointVerdict::kFreeSpace);
@@ -151,7 +151,7 @@ TEST_F(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
   SacOptions options;
   options.min_consistent_views = 2;
   options.free_space_min_views = 0;
-  const PointVerdicts verdicts(views, others, others, {}, options);
+  const PointVerdicts verdicts(views, others, ConsultedViews(others), {}, options);
   EXPECT_EQ(verdicts.At(0, 45, 60), PointVerdict::kOutlier);  // nobody agrees with the floater
   // Seen by no other view: an outlier as soon as two views are asked for.
   EXPECT_EQ(verdicts.At(0, 45, 5), PointVerdict::kOutlier);
@@ -160,7 +160,7 @@ TEST_F(PointVerdictsTest, OutlierTestNeedsAgreeingViews) {
   SyntheticBlock holes = BlockWithFloater();
   holes.depths[2].at(5, 5) = 0.0f;
   const auto hole_views = holes.SacViews();
-  EXPECT_EQ(PointVerdicts(hole_views, others, others, {}, options).At(2, 5, 5), PointVerdict::kInvalid);
+  EXPECT_EQ(PointVerdicts(hole_views, others, ConsultedViews(others), {}, options).At(2, 5, 5), PointVerdict::kInvalid);
 }
 
 // Verdicts are judged on first ask and remembered: asked in any order, from many threads, they are the same.
@@ -168,9 +168,9 @@ TEST_F(PointVerdictsTest, VerdictsDoNotDependOnTheOrderTheyAreAskedIn) {
   SacOptions options;
   options.min_consistent_views = 2;
   options.free_space_min_views = 2;
-  const PointVerdicts forward(views, others, others, {}, options);
-  const PointVerdicts backward(views, others, others, {}, options);
-  const PointVerdicts parallel(views, others, others, {}, options);
+  const PointVerdicts forward(views, others, ConsultedViews(others), {}, options);
+  const PointVerdicts backward(views, others, ConsultedViews(others), {}, options);
+  const PointVerdicts parallel(views, others, ConsultedViews(others), {}, options);
   const DepthMap& depth = block.depths[0];
   const int n = static_cast<int>(depth.num_pixels());
   std::vector<PointVerdict> in_order(n), in_reverse(n);
@@ -218,7 +218,7 @@ TEST(RedundancyTest, BestViewEmitsAloneWhereItSeesAndTheOtherViewFillsTheRest) {
   const auto views = block.SacViews();
   const auto others = AllOthers(views.size());
   const SacOptions options = BestViewOnly();
-  const PointVerdicts verdicts(views, others, others, {}, options);
+  const PointVerdicts verdicts(views, others, ConsultedViews(others), {}, options);
   const NodeTable nodes = BuildNodes(views);
   const std::vector<uint32_t> own_labels = OwnLabels(nodes);
   // View 1's pixel under view 0's footprint centre, and one far outside it.
@@ -250,9 +250,11 @@ TEST(RedundancyTest, SearchOrderIsMostPreciseFirst) {
   }
   const auto views = block.SacViews();
   const auto others = AllOthers(views.size());
-  EXPECT_EQ(RedundancySearchOrder(views, others, {})[0], (std::vector<uint32_t>{1, 3, 2}));
+  const Eigen::Vector3d anywhere = Eigen::Vector3d::Zero();
+  EXPECT_EQ(RedundancySearchOrder(views, ConsultedViews(others), {}).At(0, anywhere), (std::vector<uint32_t>{1, 3, 2}));
   // View 1 noisier by 5x (k z^2 = 5 x 250^2 > 500^2): last; view 2 less noisy than view 0 at the same height.
-  EXPECT_EQ(RedundancySearchOrder(views, others, {1.0, 5.0, 0.9, 1.0})[0], (std::vector<uint32_t>{3, 2, 1}));
+  EXPECT_EQ(RedundancySearchOrder(views, ConsultedViews(others), {1.0, 5.0, 0.9, 1.0}).At(0, anywhere),
+            (std::vector<uint32_t>{3, 2, 1}));
 }
 
 // A better view whose pixel is an outlier does not take the surface away from the other view: no hole.
@@ -267,14 +269,14 @@ TEST(RedundancyTest, BetterViewWhosePixelIsDroppedDoesNotMakeAHole) {
   const SacOptions options = BestViewOnly();
   const NodeTable nodes = BuildNodes(views);
   const std::vector<uint32_t> own_labels = OwnLabels(nodes);
-  const PointVerdicts verdicts(views, others, others, {}, options);
+  const PointVerdicts verdicts(views, others, ConsultedViews(others), {}, options);
   const Eigen::Vector3d centre = views[1].world_from_cam * views[1].depth_camera.Unproject(60.5, 45.5, 500.0);
   EXPECT_TRUE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
   // Every pixel of the fine view an outlier (it has no neighbour to agree with, and two consistent views are
   // required): the coarse view keeps its pixel.
   SacOptions strict = options;
   strict.min_consistent_views = 2;
-  const PointVerdicts fine_outliers(views, {{}, {0}}, others, {}, strict);
+  const PointVerdicts fine_outliers(views, {{}, {0}}, ConsultedViews(others), {}, strict);
   EXPECT_EQ(fine_outliers.At(0, 45, 60), PointVerdict::kOutlier);
   EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, fine_outliers, strict));
   // And a fine pixel whose Netlet chose the coarse view does not count either (it is collapsed by the Netlet rule).

@@ -39,9 +39,8 @@ bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen:
   return false;
 }
 
-std::vector<std::vector<uint32_t>> RedundancySearchOrder(const std::vector<SacView>& views,
-                                                         std::vector<std::vector<uint32_t>> judges,
-                                                         const std::vector<double>& noise_factor) {
+ConsultedViews RedundancySearchOrder(const std::vector<SacView>& views, const ConsultedViews& judges,
+                                     const std::vector<double>& noise_factor) {
   constexpr int kSampleStepPx = 8;  // every 8th row and column: the mean depth to ~0.1 %
   std::vector<double> typical_sigma(views.size(), 0.0);
   for (size_t b = 0; b < views.size(); ++b) {
@@ -59,12 +58,9 @@ std::vector<std::vector<uint32_t>> RedundancySearchOrder(const std::vector<SacVi
     const double mean_depth_m = count > 0 ? sum / static_cast<double>(count) : 0.0;
     typical_sigma[b] = (noise_factor.empty() ? 1.0 : noise_factor[b]) * DepthNoiseScale(views[b], mean_depth_m);
   }
-  for (auto& list : judges) {
-    std::stable_sort(list.begin(), list.end(), [&](uint32_t a, uint32_t b) {
-      return typical_sigma[a] < typical_sigma[b] || (typical_sigma[a] == typical_sigma[b] && a < b);
-    });
-  }
-  return judges;
+  return judges.Sorted([&](uint32_t a, uint32_t b) {
+    return typical_sigma[a] < typical_sigma[b] || (typical_sigma[a] == typical_sigma[b] && a < b);
+  });
 }
 
 }  // namespace sacfuse

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "core/consulted_views.h"
 #include "core/point_verdicts.h"
 #include "core/sac_nodes.h"
 #include "core/sac_options.h"
@@ -32,13 +33,12 @@ bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen:
                      const NodeTable& nodes, const std::vector<uint32_t>& chosen_view, const PointVerdicts& verdicts,
                      const SacOptions& options);
 
-// The order in which BetterViewEmits searches `judges[v]` for each view v: most precise first, by
+// The order in which BetterViewEmits searches each list of `judges`: most precise first, by
 // k_b zbar_b^2 / f_b (zbar_b the mean valid depth of view b, sampled), ties to the lower index. The answer is the
 // same in any order (is there a better view that emits X?) and so is every verdict (each is its pixel's own), so
 // the output does not change; but the most precise view is the one most likely to emit X, so the search usually
 // stops at its first candidate and judges fewer pixels of other views (issue 13).
-std::vector<std::vector<uint32_t>> RedundancySearchOrder(const std::vector<SacView>& views,
-                                                         std::vector<std::vector<uint32_t>> judges,
-                                                         const std::vector<double>& noise_factor);
+ConsultedViews RedundancySearchOrder(const std::vector<SacView>& views, const ConsultedViews& judges,
+                                     const std::vector<double>& noise_factor);
 
 }  // namespace sacfuse

@@ -5,6 +5,7 @@
 
 #include <tbb/task_group.h>
 
+#include "core/consulted_views.h"
 #include "core/correspondences.h"
 #include "core/netlets.h"
 #include "core/redundancy.h"
@@ -40,14 +41,18 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   stats.nodes = nodes.nodes.size();
   stats.valid_nodes = nodes.num_valid();
   const auto neighbors = SelectNeighborViews(views, nodes, options);
-  SacOptions combine_selection = options;
-  combine_selection.max_neighbor_views = options.combine_max_views;
-  combine_selection.max_view_angle_deg = options.combine_max_view_angle_deg;
-  const auto combine_views = options.combine == "average" ? SelectNeighborViews(views, nodes, combine_selection)
-                                                          : std::vector<std::vector<uint32_t>>(views.size());
+  ConsultOptions consult;
+  consult.max_views = options.combine_max_views;
+  consult.max_view_angle_deg = options.combine_max_view_angle_deg;
+  consult.min_overlap = options.min_footprint_overlap;
+  consult.region_m = options.combine_region_m;
+  // With `combine: select` nothing is combined, and the neighbours judge free space.
+  const bool average = options.combine == "average";
+  const ConsultedViews combine_views =
+      average ? ConsultedViews::Select(views, nodes, consult) : ConsultedViews(neighbors);
   timer.Mark("nodes");
   std::vector<double> noise_factor;
-  if (options.combine == "average") {
+  if (average) {
     ViewNoiseOptions noise_options;
     noise_options.slope_step_sigmas = options.combine_slope_step_sigmas;
     noise_factor = EstimateViewNoiseFactors(views, combine_views, noise_options);
@@ -64,11 +69,9 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
   timer.Mark("netlets");
   const std::vector<uint32_t> chosen = LabelNetlets(views, nodes, netlets, options, &stats.labeling);
   timer.Mark("labelling");
-  std::vector<std::vector<uint32_t>> judges(views.size());
-  for (uint32_t v = 0; v < views.size(); ++v) judges[v] = combine_views[v].empty() ? neighbors[v] : combine_views[v];
-  const std::vector<std::vector<uint32_t>> redundancy_judges = RedundancySearchOrder(views, judges, noise_factor);
+  const ConsultedViews redundancy_judges = RedundancySearchOrder(views, combine_views, noise_factor);
   // Judged on demand by the collapse (core/point_verdicts.h): their time is part of the collapse stage.
-  const PointVerdicts verdicts(views, neighbors, std::move(judges), noise_factor, options);
+  const PointVerdicts verdicts(views, neighbors, combine_views, noise_factor, options);
   stats.emitted_per_view.assign(views.size(), 0);
   // With `colours`, only the emitting view's colours are held, and the next view's are loaded (decoded) while it
   // emits, so that the loading does not hold up the collapse (FusionNeeds::colours_one_view_at_a_time).
@@ -79,7 +82,7 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
     if (colours != nullptr && v + 1 < views.size()) loading.run([&, v] { next = colours->Load(v + 1); });
     CollapseStats s;
     try {
-      s = EmitView(v, views, nodes, chosen, redundancy_judges[v], combine_views, noise_factor, verdicts, options,
+      s = EmitView(v, views, nodes, chosen, redundancy_judges, combine_views, noise_factor, verdicts, options,
                    owner, colours != nullptr ? &current : views[v].image, sink);
     } catch (...) {
       try {

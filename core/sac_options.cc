@@ -46,6 +46,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("SacOptions.combine_later_pass_min_shift_gsd", o.combine_later_pass_min_shift_gsd, 0.0);
   c.InRange("SacOptions.combine_max_views", o.combine_max_views, 1, 64);
   c.InRange("SacOptions.combine_max_view_angle_deg", o.combine_max_view_angle_deg, 0.0, 180.0);
+  c.InRange("SacOptions.combine_region_m", o.combine_region_m, 0.0, 1e6);
   c.ThrowIfFailed("SAC options");
   ValidateSuperpixelOptions(o.superpixels);
 }

@@ -108,8 +108,12 @@ struct SacOptions {
   // other depth maps' mean surface for the emitted pixels between them where it is smooth (core/combine_anchors.h);
   // false = every emitted pixel exactly.
   bool combine_anchors = true;
-  int combine_max_views = 40;           // average: views consulted per view (chosen like the neighbour views)
+  // average: views consulted per view and region (core/consulted_views.h): the combine, the free-space judges, the
+  // better-view search and the noise estimate.
+  int combine_max_views = 40;
   double combine_max_view_angle_deg = 65.0;  // average: max angle between their viewing directions, degrees
+  double combine_region_m = 128.0;      // average: side of the square regions they are chosen for, metres
+                                        // (0 = one list per view)
   // --- Superpixels (nodes).
   SuperpixelOptions superpixels;
 };

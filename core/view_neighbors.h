@@ -18,6 +18,7 @@ namespace sacfuse {
 // min_footprint_overlap of the view's box, viewing directions within max_view_angle_deg, the best max_views by
 // overlap x cos(angle), ties by index. The job fills these from fusion.max_neighbor_views,
 // fusion.max_view_angle_deg and fusion.min_footprint_overlap, so every method reprojects into the same views.
+// (The up to 40 views a SAC pixel consults are chosen per region instead: core/consulted_views.h.)
 struct NeighborViewOptions {
   int max_views = 10;                   // per view
   double max_view_angle_deg = 65.0;     // degrees

@@ -9,6 +9,7 @@
 
 #include "core/depth_combine.h"
 #include "core/median.h"
+#include "core/method_views.h"
 #include "core/patch_grid.h"
 #include "core/sac_tolerance.h"
 
@@ -24,18 +25,20 @@ struct PairRow {
   double m = 0.0;   // observed mix
 };
 
-// The rows of one view v: one per combine view with enough residuals. `prior_k` empty: the secant's slope over one
-// GSD; else over max(1 GSD, options.slope_step_sigmas sigma of v's depth under prior_k), as the combine takes it.
-std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, const std::vector<uint32_t>& others,
+// The rows of one view v: one per view it consults (at each sample's own point) with enough residuals, in view
+// order. `prior_k` empty: the secant's slope over one GSD; else over max(1 GSD, options.slope_step_sigmas sigma of
+// v's depth under prior_k), as the combine takes it.
+std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, const ConsultedViews& consulted,
                                 const ViewNoiseOptions& options, const std::vector<double>& prior_k) {
   const SacView& view = views[v];
   const DepthMap& depth = *view.depth;
-  std::vector<std::vector<double>> ratio(others.size()), share(others.size());
-  CheckCombineViewCount(others.size());
+  std::vector<std::vector<double>> ratio(views.size()), share(views.size());  // per other view b
+  CheckCombineViewCount(consulted.max_list_size());
   ViewPoint at_depth[kMaxCombineViews];
   auto add_sample = [&](int row, int col) {
     const float d = depth.at(row, col);
     if (!IsValidDepth(d)) return;
+    const std::vector<uint32_t>& others = consulted.At(v, PixelPoint(view, row, col, d));
     const double gsd = view.GsdAt(d);
     const double s_v = DepthNoiseScale(view, d);
     const double own_sigma_m = prior_k.empty() ? 0.0 : prior_k[v] * s_v;  // under the first pass's k
@@ -56,8 +59,8 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
       const double s_b = DepthNoiseScale(views[others[i]], hit.z_b_m) / std::abs(hit.slope);
       const double total = s_v * s_v + s_b * s_b;
       const double r = hit.depth_m - d;
-      ratio[i].push_back(r * r / total);
-      share[i].push_back(s_v * s_v / total);
+      ratio[others[i]].push_back(r * r / total);
+      share[others[i]].push_back(s_v * s_v / total);
     }
   };
   // The grid is visited in patches of kPatchSamples x kPatchSamples samples (core/patch_grid.h); the medians below
@@ -77,26 +80,25 @@ std::vector<PairRow> PairRowsOf(const std::vector<SacView>& views, uint32_t v, c
     }
   }
   std::vector<PairRow> rows;
-  for (size_t i = 0; i < others.size(); ++i) {
-    if (static_cast<int>(ratio[i].size()) < options.min_samples) continue;
+  for (uint32_t b = 0; b < views.size(); ++b) {
+    if (static_cast<int>(ratio[b].size()) < options.min_samples) continue;
     PairRow r;
     r.v = v;
-    r.b = others[i];
-    r.m = UpperMedianInPlace(&ratio[i]) / kMedianChiSquare1;
-    r.a = UpperMedianInPlace(&share[i]);
+    r.b = b;
+    r.m = UpperMedianInPlace(&ratio[b]) / kMedianChiSquare1;
+    r.a = UpperMedianInPlace(&share[b]);
     rows.push_back(r);
   }
   return rows;
 }
 
 // One estimate of k (see the header); `prior_k` as in PairRowsOf. Empty when no pair has enough samples.
-std::vector<double> EstimatePass(const std::vector<SacView>& views,
-                                 const std::vector<std::vector<uint32_t>>& combine_views,
+std::vector<double> EstimatePass(const std::vector<SacView>& views, const ConsultedViews& combine_views,
                                  const ViewNoiseOptions& options, const std::vector<double>& prior_k) {
   const size_t n = views.size();
   std::vector<std::vector<PairRow>> per_view(n);
   tbb::parallel_for(size_t{0}, n, [&](size_t v) {
-    per_view[v] = PairRowsOf(views, static_cast<uint32_t>(v), combine_views[v], options, prior_k);
+    per_view[v] = PairRowsOf(views, static_cast<uint32_t>(v), combine_views, options, prior_k);
   });
   // Normal equations of: sum over rows (a x_v + (1 - a) x_b - m)^2 + kMeanPull sum_v (x_v - mean x)^2.
   Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
@@ -132,8 +134,7 @@ std::vector<double> EstimatePass(const std::vector<SacView>& views,
 
 }  // namespace
 
-std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
-                                             const std::vector<std::vector<uint32_t>>& combine_views,
+std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views, const ConsultedViews& combine_views,
                                              const ViewNoiseOptions& options) {
   const std::vector<double> ones(views.size(), 1.0);
   if (views.size() < 2) return ones;

@@ -3,17 +3,17 @@
 // maps themselves: the model is sigma_v(z) = k_v * z * gsd_v(z), where z * gsd(z) = z^2 / focal is the stereo
 // growth of depth error with distance and k_v holds what geometry cannot tell (baseline, matcher, obliques).
 //
-// Estimate: on a grid of sample pixels of each view v (every `sample_step_px`-th row and column, or sparser on
-// views of more than `max_samples_per_view` x sample_step_px^2 pixels), every combine
-// view b that puts the surface within the gate on v's ray (IntersectRay) gives a residual r = t_b - d with
-// E[r^2] = k_v^2 s_v^2 + k_b^2 s_b^2, s_v = z gsd_v(z), s_b = z_b gsd_b(z_b) / |f'|. Per ordered pair (v, b) with
-// at least `min_samples` residuals: m = median(r^2 / (s_v^2 + s_b^2)) / 0.4549 (the median of chi^2 with one
-// degree of freedom; the median keeps blunders that slip through the gate from inflating it) and
-// a = median(s_v^2 / (s_v^2 + s_b^2)), so that a k_v^2 + (1 - a) k_b^2 ~ m. The k_v^2 solve these rows in the
-// least-squares sense (plus a weak pull of 1e-3 towards their mean, so views without pairs stay defined); the
-// result is clamped to [0.1, 10] times the median k. k is absolute: sigma_v(z) = k_v z gsd_v(z) metres. The gate
-// is gate_gsd local GSDs, in the second pass widened to gate_sigmas sigma of each pair's difference (a gate fixed in
-// GSDs cuts the residuals of noisy views off inside their noise and understates k).
+// Estimate: on a grid of sample pixels of each view v (every `sample_step_px`-th row and column, or sparser on views of
+// more than `max_samples_per_view` x sample_step_px^2 pixels), every view b the sample consults
+// (core/consulted_views.h) that puts the surface within the gate on v's ray (IntersectRay) gives a residual r = t_b - d
+// with E[r^2] = k_v^2 s_v^2 + k_b^2 s_b^2, s_v = z gsd_v(z), s_b = z_b gsd_b(z_b) / |f'|. Per ordered pair (v, b) with
+// at least `min_samples` residuals: m = median(r^2 / (s_v^2 + s_b^2)) / 0.4549 (the median of chi^2 with one degree of
+// freedom; the median keeps blunders that slip through the gate from inflating it) and a = median(s_v^2 / (s_v^2 +
+// s_b^2)), so that a k_v^2 + (1 - a) k_b^2 ~ m. The k_v^2 solve these rows in the least-squares sense (plus a weak pull
+// of 1e-3 towards their mean, so views without pairs stay defined); the result is clamped to [0.1, 10] times the median
+// k. k is absolute: sigma_v(z) = k_v z gsd_v(z) metres. The gate is gate_gsd local GSDs, in the second pass widened to
+// gate_sigmas sigma of each pair's difference (a gate fixed in GSDs cuts the residuals of noisy views off inside their
+// noise and understates k).
 //
 // The residuals come from the combine's secant, whose slope over one GSD scatters them where the noise is large
 // (core/depth_combine.h). So with slope_step_sigmas > 0 the estimate is made twice: first with the slope over one
@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/consulted_views.h"
 #include "core/sac_options.h"
 #include "core/sac_view.h"
 
@@ -58,8 +59,7 @@ struct ViewNoiseOptions {
 };
 
 // k per view (1 for all when no pair has enough samples: then only equal weights are meant). Deterministic for any thread count.
-std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views,
-                                             const std::vector<std::vector<uint32_t>>& combine_views,
+std::vector<double> EstimateViewNoiseFactors(const std::vector<SacView>& views, const ConsultedViews& combine_views,
                                              const ViewNoiseOptions& options);
 
 }  // namespace sacfuse
