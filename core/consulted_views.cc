@@ -5,6 +5,8 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/view_neighbors.h"
+
 namespace sacfuse {
 namespace {
 
@@ -16,7 +18,8 @@ bool SeenBy(const SacView& u, const Eigen::Vector3d& point_in_world) {
   return uv.x() >= 0 && uv.y() >= 0 && uv.x() < u.view.camera.width && uv.y() < u.view.camera.height;
 }
 
-// The best views of v for a region where `seen[u]` of its `nodes` nodes lie inside view u's image (see the header).
+// The best views of v for a region where `seen[u]` of its `num_nodes` nodes lie inside view u's image (see the
+// header).
 std::vector<uint32_t> BestViews(uint32_t v, const std::vector<uint32_t>& seen, size_t num_nodes,
                                 const std::vector<double>& cos_angle, double cos_max, const ConsultOptions& options) {
   std::vector<std::pair<double, uint32_t>> scored;
@@ -24,13 +27,9 @@ std::vector<uint32_t> BestViews(uint32_t v, const std::vector<uint32_t>& seen, s
     if (u == v || cos_angle[u] < cos_max || seen[u] == 0) continue;
     const double fraction = static_cast<double>(seen[u]) / static_cast<double>(num_nodes);
     if (fraction < options.min_overlap) continue;
-    scored.emplace_back(-fraction * cos_angle[u], u);
+    scored.emplace_back(fraction * cos_angle[u], u);
   }
-  std::sort(scored.begin(), scored.end());
-  const size_t keep = std::min<size_t>(scored.size(), static_cast<size_t>(std::max(0, options.max_views)));
-  std::vector<uint32_t> best;
-  for (size_t i = 0; i < keep; ++i) best.push_back(scored[i].second);
-  return best;
+  return BestScoredViews(std::move(scored), options.max_views);
 }
 
 }  // namespace
@@ -50,6 +49,8 @@ ConsultedViews ConsultedViews::Select(const std::vector<SacView>& views, const N
                                       const ConsultOptions& options) {
   const size_t n = views.size();
   const double cos_max = std::cos(options.max_view_angle_deg * M_PI / 180.0);
+  std::vector<Eigen::Vector3d> directions(n);
+  for (size_t v = 0; v < n; ++v) directions[v] = views[v].view.ViewDirectionInWorld();
   std::vector<std::vector<Eigen::Vector3d>> points(n);
   for (const SacNode& node : nodes.nodes) {
     if (node.valid) points[node.view].push_back(node.point_in_world);
@@ -60,9 +61,7 @@ ConsultedViews ConsultedViews::Select(const std::vector<SacView>& views, const N
   tbb::parallel_for(size_t{0}, n, [&](size_t vi) {
     const uint32_t v = static_cast<uint32_t>(vi);
     std::vector<double> cos_angle(n);
-    for (size_t u = 0; u < n; ++u) {
-      cos_angle[u] = views[v].view.ViewDirectionInWorld().dot(views[u].view.ViewDirectionInWorld());
-    }
+    for (size_t u = 0; u < n; ++u) cos_angle[u] = directions[v].dot(directions[u]);
     // Each node's region (row, col) and, per region, how many of its nodes each view sees.
     const bool regional = options.region_m > 0;
     std::map<std::pair<int64_t, int64_t>, uint32_t> region_index;

@@ -5,6 +5,16 @@
 
 namespace sacfuse {
 
+std::vector<uint32_t> BestScoredViews(std::vector<std::pair<double, uint32_t>> scored, int max_views) {
+  std::sort(scored.begin(), scored.end(), [](const auto& a, const auto& b) {
+    return a.first > b.first || (a.first == b.first && a.second < b.second);
+  });
+  const size_t keep = std::min<size_t>(scored.size(), static_cast<size_t>(std::max(0, max_views)));
+  std::vector<uint32_t> best;
+  for (size_t i = 0; i < keep; ++i) best.push_back(scored[i].second);
+  return best;
+}
+
 std::vector<std::vector<uint32_t>> NeighborsFromFootprints(const std::vector<Box2d>& boxes,
                                                            const std::vector<Eigen::Vector3d>& view_directions,
                                                            const NeighborViewOptions& options) {
@@ -21,11 +31,9 @@ std::vector<std::vector<uint32_t>> NeighborsFromFootprints(const std::vector<Box
       if (cos_angle < cos_max) continue;
       const double overlap = OverlapArea(boxes[a], boxes[b]) / area_a;
       if (overlap < options.min_footprint_overlap) continue;
-      scored.emplace_back(-overlap * cos_angle, static_cast<uint32_t>(b));
+      scored.emplace_back(overlap * cos_angle, static_cast<uint32_t>(b));
     }
-    std::sort(scored.begin(), scored.end());
-    const size_t keep = std::min<size_t>(scored.size(), static_cast<size_t>(std::max(0, options.max_views)));
-    for (size_t i = 0; i < keep; ++i) neighbors[a].push_back(scored[i].second);
+    neighbors[a] = BestScoredViews(std::move(scored), options.max_views);
   }
   return neighbors;
 }

@@ -3,6 +3,7 @@
 // enough to see the same surfaces. Footprints are the XY boxes of each view's valid nodes (what the depth map
 // actually covers), so terrain height and oblique tilt need no assumptions.
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -24,6 +25,10 @@ struct NeighborViewOptions {
   double max_view_angle_deg = 65.0;     // degrees
   double min_footprint_overlap = 0.05;  // fraction of the view's footprint box, 0-1
 };
+
+// The views of `scored` (score, view) with the highest scores, at most max_views, ties to the lower view index:
+// the ranking of neighbour views here and of consulted views (core/consulted_views.h).
+std::vector<uint32_t> BestScoredViews(std::vector<std::pair<double, uint32_t>> scored, int max_views);
 
 // neighbors[v] from footprint boxes (world XY; a box without area has no neighbours and is nobody's) and viewing
 // directions (unit, world frame), both indexed like the views. Deterministic.
