@@ -45,7 +45,7 @@ bool CoverageAgrees(const std::vector<SacView>& views, uint32_t v, double d, uin
 // ends in a cluster that chose its own view, and every pixel of the chain passes its point tests. The verdicts are
 // asked last, once the chain's cheap checks hold: a verdict costs ~45 depth reads, a hop one.
 bool ChoiceCovers(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point, double d,
-                  uint32_t label, const NodeTable& nodes, const std::vector<uint32_t>& chosen_view,
+                  uint32_t label, const NodeTable& nodes, const NodeLabels& chosen_view,
                   const std::vector<double>& noise_factor, const PointVerdicts& verdicts, const SacOptions& options) {
   struct Hop {
     uint32_t view;
@@ -61,7 +61,7 @@ bool ChoiceCovers(const std::vector<SacView>& views, uint32_t v, const Eigen::Ve
     if (!CoverageAgrees(views, v, d, target, hit, noise_factor, options)) return false;
     hops[num_hops++] = {target, hit.row, hit.col};
     const uint32_t next =
-        chosen_view[nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col)))];
+        chosen_view.At(nodes.Id(target, static_cast<uint32_t>(tv.superpixels->label(hit.row, hit.col))));
     if (next == target) {
       covered = true;
       break;
@@ -77,7 +77,7 @@ bool ChoiceCovers(const std::vector<SacView>& views, uint32_t v, const Eigen::Ve
 }  // namespace
 
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
-                       const std::vector<uint32_t>& chosen_view, const ConsultedViews& redundancy_judges,
+                       const NodeLabels& chosen_view, const ConsultedViews& redundancy_judges,
                        const ConsultedViews& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
                        const SacOptions& options, const OwnedRegion& owner, const RgbImage* colours,
@@ -154,7 +154,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           continue;
         }
         const uint32_t node_id = nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)));
-        const uint32_t label = chosen_view[node_id];
+        const uint32_t label = chosen_view.At(node_id);
         if (label != v) {
           if (ChoiceCovers(views, v, point, d, label, nodes, chosen_view, noise_factor, verdicts, options)) {
             ++stats.collapsed;

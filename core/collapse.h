@@ -17,6 +17,7 @@
 #include "core/owned_region.h"
 #include "core/point.h"
 #include "core/point_verdicts.h"
+#include "core/sac_labeling.h"
 #include "core/sac_nodes.h"
 #include "core/sac_options.h"
 #include "core/sac_view.h"
@@ -57,7 +58,7 @@ struct CollapseStats {
 // not counted (core/owned_region.h; patches wholly inside or outside it are decided at once). The points take
 // their colours from `colours` (view v's, as SacView::image; null = grey).
 CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const NodeTable& nodes,
-                       const std::vector<uint32_t>& chosen_view, const ConsultedViews& redundancy_judges,
+                       const NodeLabels& chosen_view, const ConsultedViews& redundancy_judges,
                        const ConsultedViews& combine_views,
                        const std::vector<double>& noise_factor, const PointVerdicts& verdicts,
                        const SacOptions& options, const OwnedRegion& owner, const RgbImage* colours,

@@ -41,7 +41,8 @@ FusionStats FromSacStats(const SacStats& s) {
   out.emitted_per_view = s.emitted_per_view;
   out.Count("nodes", s.nodes);
   out.Count("valid_nodes", s.valid_nodes);
-  out.Count("correspondences", static_cast<uint64_t>(s.mean_correspondences * s.valid_nodes + 0.5));
+  out.Count("labelled_nodes", s.labeling.labelled_nodes);
+  out.Count("correspondences", s.labeling.correspondences);
   out.Count("netlets", s.labeling.netlets);
   out.Count("netlets_proven_optimal", s.labeling.proven_optimal);
   out.Count("nodes_keeping_own_view", s.labeling.nodes_keeping_own_view);

@@ -4,8 +4,6 @@
 
 namespace sacfuse {
 
-Netlets NetletsFromGroups(const NodeTable& nodes, const std::vector<std::vector<uint32_t>>& groups, double tau_m);
-
 Netlets BuildNetlets(const NodeTable& nodes, const Correspondences& correspondences, double tau_m,
                      size_t max_members) {
   const size_t n = nodes.nodes.size();
@@ -71,13 +69,18 @@ Netlets BuildNodeNetlets(const NodeTable& nodes, const Correspondences& correspo
   std::vector<std::vector<uint32_t>> groups;
   for (uint32_t i = 0; i < nodes.nodes.size(); ++i) {
     if (!nodes.nodes[i].valid) continue;
-    std::vector<uint32_t> group = {i};
-    for (const uint32_t* it = correspondences.begin(i); it != correspondences.end(i); ++it) {
-      if ((nodes.nodes[*it].point_in_world - nodes.nodes[i].point_in_world).norm() <= tau_m) group.push_back(*it);
-    }
-    groups.push_back(std::move(group));
+    groups.push_back(NodeNetletMembers(nodes, i, correspondences.begin(i), correspondences.end(i), tau_m));
   }
   return NetletsFromGroups(nodes, groups, tau_m);
+}
+
+std::vector<uint32_t> NodeNetletMembers(const NodeTable& nodes, uint32_t node, const uint32_t* first,
+                                        const uint32_t* last, double tau_m) {
+  std::vector<uint32_t> group = {node};
+  for (const uint32_t* it = first; it != last; ++it) {
+    if ((nodes.nodes[*it].point_in_world - nodes.nodes[node].point_in_world).norm() <= tau_m) group.push_back(*it);
+  }
+  return group;
 }
 
 Netlets NetletsFromGroups(const NodeTable& nodes, const std::vector<std::vector<uint32_t>>& groups, double tau_m) {

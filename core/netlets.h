@@ -42,4 +42,11 @@ Netlets BuildNetlets(const NodeTable& nodes, const Correspondences& corresponden
 // correspondents within tau. Netlets overlap; each decides only its centre's label.
 Netlets BuildNodeNetlets(const NodeTable& nodes, const Correspondences& correspondences, double tau_m);
 
+// The members of a per-node Netlet: `node`, then those of its correspondents [first, last) within tau.
+std::vector<uint32_t> NodeNetletMembers(const NodeTable& nodes, uint32_t node, const uint32_t* first,
+                                        const uint32_t* last, double tau_m);
+
+// Netlets of the given member lists (the first member of each is its seed), with their edges (members within tau).
+Netlets NetletsFromGroups(const NodeTable& nodes, const std::vector<std::vector<uint32_t>>& groups, double tau_m);
+
 }  // namespace sacfuse

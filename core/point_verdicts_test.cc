@@ -220,7 +220,7 @@ TEST(RedundancyTest, BestViewEmitsAloneWhereItSeesAndTheOtherViewFillsTheRest) {
   const SacOptions options = BestViewOnly();
   const PointVerdicts verdicts(views, others, ConsultedViews(others), {}, options);
   const NodeTable nodes = BuildNodes(views);
-  const std::vector<uint32_t> own_labels = OwnLabels(nodes);
+  const NodeLabels own_labels(OwnLabels(nodes));
   // View 1's pixel under view 0's footprint centre, and one far outside it.
   const Eigen::Vector3d inside = views[1].world_from_cam * views[1].depth_camera.Unproject(60.5 - 48.0, 45.5, 500.0);
   EXPECT_TRUE(BetterViewEmits(views, 1, inside, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
@@ -268,7 +268,7 @@ TEST(RedundancyTest, BetterViewWhosePixelIsDroppedDoesNotMakeAHole) {
   const auto others = AllOthers(views.size());
   const SacOptions options = BestViewOnly();
   const NodeTable nodes = BuildNodes(views);
-  const std::vector<uint32_t> own_labels = OwnLabels(nodes);
+  const NodeLabels own_labels(OwnLabels(nodes));
   const PointVerdicts verdicts(views, others, ConsultedViews(others), {}, options);
   const Eigen::Vector3d centre = views[1].world_from_cam * views[1].depth_camera.Unproject(60.5, 45.5, 500.0);
   EXPECT_TRUE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, verdicts, options));
@@ -280,7 +280,7 @@ TEST(RedundancyTest, BetterViewWhosePixelIsDroppedDoesNotMakeAHole) {
   EXPECT_EQ(fine_outliers.At(0, 45, 60), PointVerdict::kOutlier);
   EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, own_labels, fine_outliers, strict));
   // And a fine pixel whose Netlet chose the coarse view does not count either (it is collapsed by the Netlet rule).
-  std::vector<uint32_t> all_coarse(nodes.nodes.size(), 1);
+  const NodeLabels all_coarse(std::vector<uint32_t>(nodes.nodes.size(), 1));
   EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, all_coarse, verdicts, options));
 }
 

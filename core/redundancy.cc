@@ -9,7 +9,7 @@ namespace sacfuse {
 
 bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point_in_world,
                      double depth_m, const std::vector<uint32_t>& judges, const std::vector<double>& noise_factor,
-                     const NodeTable& nodes, const std::vector<uint32_t>& chosen_view, const PointVerdicts& verdicts,
+                     const NodeTable& nodes, const NodeLabels& chosen_view, const PointVerdicts& verdicts,
                      const SacOptions& options) {
   auto sigma_m = [&](uint32_t i, double z_m) {
     return (noise_factor.empty() ? 1.0 : noise_factor[i]) * DepthNoiseScale(views[i], z_m);
@@ -26,7 +26,7 @@ bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen:
     // per pixel agreed in depth and then failed here; a label is read from a smaller raster than a depth.
     const DepthLookup at = ProjectIntoDepth(bv, point_in_b);
     if (!at.inside) continue;
-    if (chosen_view[nodes.Id(b, static_cast<uint32_t>(bv.superpixels->label(at.row, at.col)))] != b) continue;
+    if (chosen_view.At(nodes.Id(b, static_cast<uint32_t>(bv.superpixels->label(at.row, at.col)))) != b) continue;
     const float stored_depth_m = bv.depth->at(at.row, at.col);
     if (!IsValidDepth(stored_depth_m)) continue;
     const double pair_sigma = noise_factor.empty() ? 0.0 : PairSigmaM(own_sigma, sigma_b);

@@ -19,6 +19,7 @@
 
 #include "core/consulted_views.h"
 #include "core/point_verdicts.h"
+#include "core/sac_labeling.h"
 #include "core/sac_nodes.h"
 #include "core/sac_options.h"
 #include "core/sac_view.h"
@@ -30,7 +31,7 @@ namespace sacfuse {
 // (empty = 1 for every view).
 bool BetterViewEmits(const std::vector<SacView>& views, uint32_t v, const Eigen::Vector3d& point_in_world,
                      double depth_m, const std::vector<uint32_t>& judges, const std::vector<double>& noise_factor,
-                     const NodeTable& nodes, const std::vector<uint32_t>& chosen_view, const PointVerdicts& verdicts,
+                     const NodeTable& nodes, const NodeLabels& chosen_view, const PointVerdicts& verdicts,
                      const SacOptions& options);
 
 // The order in which BetterViewEmits searches each list of `judges`: most precise first, by

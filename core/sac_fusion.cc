@@ -7,7 +7,6 @@
 
 #include "core/consulted_views.h"
 #include "core/correspondences.h"
-#include "core/netlets.h"
 #include "core/redundancy.h"
 #include "core/sac_nodes.h"
 #include "core/view_neighbors.h"
@@ -59,15 +58,9 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
     stats.noise_factor = noise_factor;
     timer.Mark("noise");
   }
-  const Correspondences correspondences = FindCorrespondences(views, nodes, neighbors, options, noise_factor);
-  stats.mean_correspondences =
-      stats.valid_nodes > 0 ? static_cast<double>(correspondences.node_ids.size()) / stats.valid_nodes : 0.0;
-  timer.Mark("correspondences");
-  const bool per_node = options.netlets == "node";
-  const Netlets netlets = per_node ? BuildNodeNetlets(nodes, correspondences, options.tau_m)
-                                   : BuildNetlets(nodes, correspondences, options.tau_m);
-  timer.Mark("netlets");
-  const std::vector<uint32_t> chosen = LabelNetlets(views, nodes, netlets, options, &stats.labeling);
+  // Correspondences, Netlets and their labels: on demand during the collapse with the defaults (core/sac_labeling.h).
+  const CorrespondenceFinder finder(views, nodes, neighbors, options, noise_factor);
+  const NodeLabels labels(views, nodes, finder, options);
   timer.Mark("labelling");
   const ConsultedViews redundancy_judges = RedundancySearchOrder(views, combine_views, noise_factor);
   // Judged on demand by the collapse (core/point_verdicts.h): their time is part of the collapse stage.
@@ -82,7 +75,7 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
     if (colours != nullptr && v + 1 < views.size()) loading.run([&, v] { next = colours->Load(v + 1); });
     CollapseStats s;
     try {
-      s = EmitView(v, views, nodes, chosen, redundancy_judges, combine_views, noise_factor, verdicts, options,
+      s = EmitView(v, views, nodes, labels, redundancy_judges, combine_views, noise_factor, verdicts, options,
                    owner, colours != nullptr ? &current : views[v].image, sink);
     } catch (...) {
       try {
@@ -98,6 +91,7 @@ SacStats RunSacFusion(const std::vector<SacView>& views, const SacOptions& optio
     if (progress) progress("collapse", v + 1, views.size());
   }
   timer.Mark("collapse");
+  stats.labeling = labels.Stats();
   return stats;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Select-and-Combine depth fusion over a set of views held in memory (the caller loads rasters; tiling decides
-// which). Stages: nodes -> neighbour views -> correspondences -> Netlets -> labelling -> collapse + outliers.
+// which). Stages: nodes -> neighbour views -> noise -> correspondences, Netlets and labelling (on demand during the
+// collapse with the defaults, core/sac_labeling.h) -> collapse + point tests.
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -18,7 +19,6 @@ namespace sacfuse {
 struct SacStats {
   size_t nodes = 0;
   size_t valid_nodes = 0;
-  double mean_correspondences = 0.0;   // per valid node
   LabelingStats labeling;
   CollapseStats collapse;
   std::vector<uint64_t> emitted_per_view;  // indexed like the input views

@@ -106,7 +106,11 @@ TEST(SacFusionTest, ThreeViewsBiasedViewIsNotSelected) {
   // Views 0 and 2 together see all of view 1's ground: nothing biased may survive but superpixel borders.
   EXPECT_LT(biased_points, 120u * 90u / 20) << "biased points kept: " << biased_points;
   EXPECT_LT(stats.emitted_per_view[1], stats.emitted_per_view[0] / 4);
-  EXPECT_GT(stats.labeling.nodes_relabelled, 0u);
+  // The labels are solved on demand (core/sac_labeling.h): view 1's pixels are dropped as redundant before their
+  // own clusters' labels are asked for, so fewer nodes are labelled than exist (which view 1's Netlets choose is
+  // core/sac_labeling_test.cc's ThreeViewNetletsAvoidTheBiasedViewAndBreakTiesByIndex).
+  EXPECT_GT(stats.labeling.labelled_nodes, 0u);
+  EXPECT_LT(stats.labeling.labelled_nodes, stats.valid_nodes) << stats.labeling.labelled_nodes;
 }
 
 // The paper's constant unary: every Netlet takes a single label (its seed's view); still no averaging.

@@ -122,5 +122,47 @@ TEST(SacLabelingTest, PaperUnaryTiesGoToTheLowestViewIndex) {
   }
 }
 
+// NodeLabels with the defaults solves a node's Netlet only when its label is asked for, and gives LabelNetlets'
+// label; its statistics count only the nodes asked for. Partition Netlets are all solved at once.
+TEST(SacLabelingTest, NodeLabelsOnDemandAreLabelNetletsLabels) {
+  SyntheticBlock block;
+  for (int i = 0; i < 3; ++i) {
+    const View v = NadirView(i, kEast + 1.0 * i, kNorth, 250.0 + 125.0 * i);
+    block.Add(v, PlaneDepth(v, i == 1 ? 0.6 : 0.0));
+  }
+  SacOptions options = Options();
+  options.depth_tolerance_gsd = 5.0;
+  const Labelled l = Label(block, options);
+  const auto views = block.SacViews();
+  const auto neighbors = SelectNeighborViews(views, l.nodes, options);
+  const CorrespondenceFinder finder(views, l.nodes, neighbors, options);
+  const NodeLabels labels(views, l.nodes, finder, options);
+  ASSERT_TRUE(labels.on_demand());
+  EXPECT_EQ(labels.Stats().labelled_nodes, 0u);
+  const Correspondences every = FindCorrespondences(finder, l.nodes.nodes.size());
+  size_t asked = 0, relabelled = 0, correspondents = 0;
+  for (uint32_t i = 0; i < l.nodes.nodes.size(); i += 2) {  // every second node
+    EXPECT_EQ(labels.At(i), l.chosen[i]) << "node " << i;
+    EXPECT_EQ(labels.At(i), l.chosen[i]) << "node " << i << ", asked again";
+    if (!l.nodes.nodes[i].valid) continue;
+    ++asked;
+    relabelled += l.chosen[i] != l.nodes.nodes[i].view ? 1 : 0;
+    correspondents += every.count(i);
+  }
+  const LabelingStats stats = labels.Stats();
+  EXPECT_GT(relabelled, 10u);
+  EXPECT_EQ(stats.labelled_nodes, asked);
+  EXPECT_EQ(stats.netlets, asked);
+  EXPECT_EQ(stats.nodes_relabelled, relabelled);
+  EXPECT_EQ(stats.nodes_relabelled + stats.nodes_keeping_own_view, asked);
+  EXPECT_LT(stats.labelled_nodes, l.stats.labelled_nodes);
+  EXPECT_EQ(stats.correspondences, correspondents);
+
+  options.netlets = "partition";
+  const NodeLabels all(views, l.nodes, finder, options);
+  EXPECT_FALSE(all.on_demand());
+  EXPECT_EQ(all.Stats().labelled_nodes, l.nodes.num_valid());
+}
+
 }  // namespace
 }  // namespace sacfuse

@@ -51,14 +51,17 @@ nlohmann::json FusionStatsJson(const FusionStats& m, bool tiled) {
 // SAC's counters under the names the HTML report reads (report/report_data.h).
 nlohmann::json SacSectionJson(const FusionStats& f, size_t superpixels_computed) {
   const uint64_t valid_nodes = f.counter("valid_nodes");
+  const uint64_t labelled_nodes = f.counter("labelled_nodes");
   const std::vector<uint64_t>* sizes = f.histogram("netlet_size");
   nlohmann::json stages = nlohmann::json::object();
   for (const auto& [stage, secs] : f.stage_seconds) stages[stage] = secs;
   nlohmann::json j = {
       {"nodes", f.counter("nodes")},
       {"valid_nodes", valid_nodes},
-      {"mean_correspondences",
-       valid_nodes > 0 ? static_cast<double>(f.counter("correspondences")) / static_cast<double>(valid_nodes) : 0.0},
+      {"labelled_nodes", labelled_nodes},
+      {"mean_correspondences",  // per labelled node
+       labelled_nodes > 0 ? static_cast<double>(f.counter("correspondences")) / static_cast<double>(labelled_nodes)
+                          : 0.0},
       {"netlets", f.counter("netlets")},
       {"netlets_proven_optimal", f.counter("netlets_proven_optimal")},
       {"netlet_size_histogram", sizes != nullptr ? *sizes : std::vector<uint64_t>{}},
