@@ -149,7 +149,8 @@ void CorrespondenceFinder::Find(uint32_t i, uint32_t* out) const {
 Correspondences FindCorrespondences(const CorrespondenceFinder& finder, size_t num_nodes) {
   const size_t stride = finder.stride();
   std::vector<uint32_t> scratch(num_nodes * stride);
-  tbb::parallel_for(size_t{0}, num_nodes, [&](size_t i) { finder.Find(static_cast<uint32_t>(i), &scratch[i * stride]); });
+  tbb::parallel_for(size_t{0}, num_nodes,
+                    [&](size_t i) { finder.Find(static_cast<uint32_t>(i), &scratch[i * stride]); });
   Correspondences out;
   out.offsets.resize(num_nodes + 1, 0);
   for (size_t i = 0; i < num_nodes; ++i) {

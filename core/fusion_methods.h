@@ -14,8 +14,8 @@ namespace sacfuse {
 
 // Select-and-Combine (core/sac_fusion.h). Its FusionStats carry SAC's counters under the names of the run report
 // ("nodes", "valid_nodes", "labelled_nodes", "correspondences" (total over the labelled nodes), "netlets",
-// "netlets_proven_optimal", "nodes_keeping_own_view", "nodes_relabelled", "pixels_in", "pixels_collapsed", "pixels_kept_uncovered", "pixels_outliers",
-// "pixels_not_owned", "points_interpolated"), the histogram "netlet_size" and, with fusion.combine: average, the
+// "netlets_proven_optimal", "nodes_keeping_own_view", "nodes_relabelled", "pixels_in", "pixels_collapsed",
+// "pixels_kept_uncovered", "pixels_outliers", "pixels_not_owned", "points_interpolated"), the histogram "netlet_size" and, with fusion.combine: average, the
 // per-view "noise_factor". `progress` reports the collapse view by view.
 std::unique_ptr<FusionMethod> MakeSacMethod(const SacOptions& options, const SacProgress& progress = {});
 // Every valid depth pixel becomes a point (core/union_fusion.h).
