@@ -136,6 +136,8 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
            "free space: drop points that at least this many views see through (0 = off)");
   s.AddDouble("fusion.free_space_sigmas", &f.free_space_sigmas, Affects("sigma", AtLeast(0), kSac),
               "free space: 'sees through' beyond this many sigmas of the estimated noise");
+  s.AddInt("fusion.free_space_early_pass_views", &f.free_space_early_pass_views, Affects("views", Closed(0, 64), kSac),
+           "free space: a point none of the first this many judges sees through passes (0 = ask every judge)");
   s.AddInt("fusion.free_space_window_px", &f.free_space_window_px, Affects("px", Closed(0, 8), kSac),
            "free space: a view sees through a point only if every depth within this many pixels of it does");
   s.AddInt("fusion.free_space_edge_band_px", &f.free_space_edge_band_px,

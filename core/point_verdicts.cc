@@ -80,9 +80,14 @@ bool InFreeSpace(const std::vector<SacView>& views, uint32_t v, int row, int col
     }
     return window_px;
   };
+  const int early_pass = options.free_space_early_pass_views;
   int count = 0;
+  int asked = 0;  // judges other than v
   for (const uint32_t b : judges) {
     if (b == v) continue;
+    // None of the first judges (the views that see the region best) saw through it: it passes (issue 13).
+    if (count == 0 && early_pass > 0 && asked == early_pass) return false;
+    ++asked;
     const bool looked_up = neighbor_slot[b] >= 0;
     DepthLookup hit =
         looked_up ? neighbor_hits[neighbor_slot[b]] : ProjectIntoDepth(views[b], views[b].PointInCamera(point));

@@ -74,6 +74,42 @@ TEST_F(PointVerdictsTest, FloaterSeenThroughByTwoViewsIsFreeSpaceTheGroundPasses
   EXPECT_EQ(PointVerdicts(views, others, ConsultedViews(others), {}, options).At(0, 45, 60), PointVerdict::kPasses);
 }
 
+// The judges are asked in their list's order, and a point that none of the first free_space_early_pass_views sees
+// through passes without the rest. Views 4 m west, 4 m and 8 m east of view 0 (which holds the floater); view 1 has
+// no depth (so never sees through the floater), views 2 and 3 see the ground behind it.
+TEST(PointVerdictsEarlyPassTest, PointNoneOfTheFirstJudgesSeesThroughPasses) {
+  SyntheticBlock block;
+  const double east_offset_m[4] = {0.0, 4.0, 8.0, -4.0};
+  for (uint32_t i = 0; i < 4; ++i) {
+    const View view = NadirView(i, kEast + east_offset_m[i], kNorth, 500.0);
+    DepthMap depth = PlaneDepth(view);
+    for (int r = 0; r < depth.height; ++r) {
+      for (int c = 0; c < depth.width; ++c) {
+        if (i == 0 && r >= 40 && r < 50 && c >= 55 && c < 65) depth.at(r, c) -= 20.0f;
+        if (i == 1) depth.at(r, c) = 0.0f;  // no depth
+      }
+    }
+    block.Add(view, depth);
+  }
+  const std::vector<SacView> views = block.SacViews();
+  const std::vector<std::vector<uint32_t>> neighbors = AllOthers(views.size());
+  auto verdict = [&](std::vector<uint32_t> judges_of_0, int early_pass) {
+    std::vector<std::vector<uint32_t>> judges = neighbors;
+    judges[0] = std::move(judges_of_0);
+    SacOptions options;
+    options.min_consistent_views = 1;  // isolate the free-space test
+    options.free_space_min_views = 2;
+    options.free_space_early_pass_views = early_pass;
+    return PointVerdicts(views, neighbors, ConsultedViews(judges), {}, options).At(0, 45, 60);
+  };
+  EXPECT_EQ(verdict({1, 2, 3}, 0), PointVerdict::kFreeSpace);  // every judge asked
+  EXPECT_EQ(verdict({1, 2, 3}, 1), PointVerdict::kPasses);     // judge 1 does not see through: it passes
+  EXPECT_EQ(verdict({1, 2, 3}, 2), PointVerdict::kFreeSpace);  // judge 2 does: the rest are asked too
+  EXPECT_EQ(verdict({2, 1, 3}, 1), PointVerdict::kFreeSpace);
+  EXPECT_EQ(verdict({0, 1, 2, 3}, 1), PointVerdict::kPasses);  // the view itself is not one of its judges
+  EXPECT_EQ(verdict({0, 2, 1, 3}, 1), PointVerdict::kFreeSpace);
+}
+
 // Judges that are not outlier neighbours are read through the depth ceiling first (DepthCeiling): a pit 20 m deep
 // in one pixel of view 1 raises the ceiling of its whole block, but only the view-0 pixel that lands on the pit is
 // seen through; its neighbour, landing in the same block, still passes. Same verdicts as reading every pixel.

@@ -28,6 +28,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("SacOptions.redundancy_tolerance_sigmas", o.redundancy_tolerance_sigmas, 0.0);
   c.InRange("SacOptions.free_space_min_views", o.free_space_min_views, 0, 64);
   c.AtLeast("SacOptions.free_space_sigmas", o.free_space_sigmas, 0.0);
+  c.InRange("SacOptions.free_space_early_pass_views", o.free_space_early_pass_views, 0, 64);
   c.InRange("SacOptions.free_space_window_px", o.free_space_window_px, 0, 8);
   c.InRange("SacOptions.free_space_edge_band_px", o.free_space_edge_band_px, 0, kDepthEdgeReachPx);
   c.Greater("SacOptions.depth_edge_jump_gsd", o.depth_edge_jump_gsd, 0.0);
