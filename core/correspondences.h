@@ -22,7 +22,7 @@ struct Correspondences {
 
 // The corresponding nodes of one node at a time (a node's list does not depend on any other node's), so that they
 // can be found for every node (FindCorrespondences) or only for the nodes whose labels are asked for
-// (core/node_labels.h). Throws Error for the dense strategy when a view has no consistency graph. With
+// (NodeLabels, core/sac_labeling.h). Throws Error for the dense strategy when a view has no consistency graph. With
 // `noise_factor` (core/view_noise.h, one per view; empty = none) the reprojection strategy's depth test also
 // accepts depths within correspondence_tolerance_sigmas sigma of the two views' depth difference. `views`,
 // `nodes`, `neighbors` and `options` must outlive the finder.
