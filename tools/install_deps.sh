@@ -60,7 +60,7 @@ OPTIONAL_PKGS=(
   colmap                   # COLMAP 3.8 (CPU build): stereo_fusion, the comparison of issue 4
   time                     # /usr/bin/time -v: wall time and peak RSS of `sacfuse run` in compare_colmap.sh
   jq                       # reading run_report.json / eval.json in compare_colmap.sh
-  python3-yaml             # tools/bench/config_with_output.sh (compare_colmap.sh, ab_time.sh): config copies
+  python3-yaml             # tools/bench/config_with_output.sh (compare_colmap.sh, ab_time.sh, stage_ladder.sh)
   clang                    # tools/fuzz.sh: the libFuzzer targets of tests/fuzz are built with clang
   libclang-rt-14-dev       # tools/fuzz.sh: libFuzzer, ASan and UBSan runtimes of clang 14 (Debian 12)
   python3-numpy python3-scipy python3-opencv python3-open3d  # sacfuse bench --aerial-bench: ../shared/aerial-bench's
