@@ -32,14 +32,7 @@ for ((rep = 1; rep <= repeats; ++rep)); do
   for i in "${!binaries[@]}"; do
     b=${binaries[$i]}
     out=$work/out
-    rm -rf "$out"
-    "$(dirname "$0")/config_with_output.sh" "$config" "$out" > "$work/config.yaml" ||
-      { echo "$0: cannot rewrite $config (see above)" >&2; exit 2; }
-    if ! /usr/bin/time -f "%M" -o "$work/time.txt" "$b" run "$work/config.yaml" > "$work/run.log" 2>&1; then
-      tail -n 20 "$work/run.log" >&2
-      echo "$0: $b failed" >&2
-      exit 1
-    fi
+    "$(dirname "$0")/timed_run.sh" "$b" "$config" "$work" config
     cloud=$(ls "$out"/fused.la[sz])
     same="-"
     if [[ $i -eq 0 ]]; then
@@ -48,7 +41,7 @@ for ((rep = 1; rep <= repeats; ++rep)); do
     else
       cmp -s "$cloud" "$first_cloud" && same="identical" || same="differs"
     fi
-    python3 - "$out/run_report.json" "$(cat "$work/time.txt")" "$i" "$rep" "$same" "$b" "$results" <<'PY'
+    python3 - "$out/run_report.json" "$(tail -n 1 "$work/time.txt")" "$i" "$rep" "$same" "$b" "$results" <<'PY'
 import json, sys
 report, rss_kb, index, rep, same, binary, results = sys.argv[1:]
 d = json.load(open(report))

@@ -2,7 +2,7 @@
 # Prints a sacfuse YAML config with every relative path made absolute (relative to the config's own folder, as
 # sacfuse reads them: input.path, input.cameras, fusion.superpixel_cache_dir, evaluation.reference,
 # evaluation.mask) and output.dir replaced by OUT_DIR, so the copy can live anywhere. Used by the benchmarks that
-# run one config into their own output folders (compare_colmap.sh, ab_time.sh, stage_ladder.sh).
+# run one config into their own output folders (compare_colmap.sh; timed_run.sh for ab_time.sh, stage_ladder.sh).
 #
 #   tools/bench/config_with_output.sh CONFIG OUT_DIR [SECTION.KEY=VALUE...] > COPY.yaml
 #

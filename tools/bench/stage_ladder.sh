@@ -51,16 +51,8 @@ for i in "${!steps[@]}"; do
   # shellcheck disable=SC2206  # the switches are words without spaces
   active+=(${switches[$i]})
   dir=$work/step$i
-  rm -rf "$dir"
-  mkdir -p "$dir"
-  "$(dirname "$0")/config_with_output.sh" "$config" "$dir/out" ${active[@]+"${active[@]}"} > "$dir/config.yaml" ||
-    { echo "$0: cannot rewrite $config (see above)" >&2; exit 2; }
-  if ! /usr/bin/time -f "%M" -o "$dir/time.txt" "$sacfuse" run "$dir/config.yaml" --threads "$threads" \
-      > "$dir/run.log" 2>&1; then
-    tail -n 20 "$dir/run.log" >&2
-    echo "$0: step '${steps[$i]}' failed" >&2
-    exit 1
-  fi
+  "$(dirname "$0")/timed_run.sh" "$sacfuse" "$config" "$dir" "$threads" ${active[@]+"${active[@]}"} ||
+    { echo "$0: step '${steps[$i]}' failed" >&2; exit 1; }
   printf '%s\t%s\t%s\n' "${steps[$i]}" "$dir/out/run_report.json" "$(tail -n 1 "$dir/time.txt")" >> "$results"
 done
 python3 - "$results" "${COLMAP_WALL_S:-}" <<'PY'
