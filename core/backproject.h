@@ -10,7 +10,7 @@ namespace sacfuse {
 
 // The one pixel convention of sacfuse: depth pixel (col, row) stands for the ray through its centre
 // (col + 0.5, row + 0.5) (COLMAP's stereo_fusion uses the corner, a half-pixel shift we do not copy; measured
-// worse on aerial-bench, see README). Camera-frame point at z-depth `depth_m` (depth 1: the ray's direction with
+// worse on aerial-bench, see docs/design.md). Camera-frame point at z-depth `depth_m` (depth 1: the ray's direction with
 // z = 1); `depth_camera` is the view's camera scaled to the depth raster.
 inline Eigen::Vector3d DepthPixelInCamera(const PinholeCamera& depth_camera, int col, int row, double depth_m) {
   return depth_camera.Unproject(col + 0.5, row + 0.5, depth_m);

@@ -12,7 +12,7 @@
 //     were combined exactly (the emitted set is ragged where views take turns), when their surfaces on its ray
 //     differ by more than max(kAnchorToleranceGsd local GSDs, kAnchorToleranceSigmas sigma of its own depth's
 //     estimated noise) (a depth edge, a step, a twisted surface), or when d lies outside the combine's gate of M.
-// An anchor where no other depth map agreed does not count. Measured (README "SAC fusion: the choices"): a
+// An anchor where no other depth map agreed does not count. Measured (docs/design.md): a
 // full-scale Dortmund tile 0.84x the CPU time (half of its emitted pixels interpolated); F1 at 2x GSD within
 // +-0.0007 on the six aerial-bench blocks and 0.02-0.43 points higher on our six bench blocks (M averaged over
 // neighbouring rays is less noisy); 1 neighbour instead of 2 (no consistency check) lost 0.001-0.002 at error

@@ -8,7 +8,7 @@
 //   score = (fraction of the cell's valid nodes of v inside u's whole image) x cos(angle between v's and u's
 //           viewing directions),
 // those within max_view_angle_deg and seeing at least min_overlap of the nodes, best first, ties by index.
-// Why (2026-11-28, twenty-sixth session, README "Where SAC's time goes"): chosen once per view over a whole tile (by
+// Why (2026-11-28; docs/design.md): chosen once per view over a whole tile (by
 // footprint-box overlap, as the Netlet neighbours are), the list depended on the tile: on the full Dortmund block
 // a 256 m tile consulted views that cover part of it well and dropped 241.2 M pixels as redundant against 247.1 M
 // for its four 128 m tiles, emitted 17 % more points and scored F1 0.001-0.003 lower. Per cell, the list of a

@@ -12,8 +12,8 @@
 // correction over all views is held at zero, so the block's datum (its georeference) does not move. Damped
 // Gauss-Newton (Levenberg-Marquardt with the diagonal doubled): the rotation and translation of a narrow-angle view
 // are hardly separated by the data, and undamped steps let them drift together. Each iteration projects again with
-// the corrected poses. Measured, and how the defaults were chosen: README "Co-registration of the views before
-// fusion" (2,000 samples, 12 neighbours and 20 steps gain as much as 20,000, 24 and 8 at a sixth of the time).
+// the corrected poses. Measured, and how the defaults were chosen: docs/design.md (2,000 samples, 12 neighbours
+// and 20 steps gain as much as 20,000, 24 and 8 at a sixth of the time).
 //
 // The pivot is the footprint centroid, not the camera centre: rotations about the camera gained more on some
 // aerial-bench blocks but lost on our narrow 11-degree city block, where a rotation about the camera is mostly a

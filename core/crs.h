@@ -9,7 +9,7 @@
 //   "EPSG:258zz"       ETRS89 / UTM zone zz N, zz = 28..38 (the zones EPSG defines)
 //   "ENU:lat,lon,h"    a local east-north-up tangent frame at that origin (degrees, degrees, metres ellipsoidal)
 //
-// Conventions (documented in the README):
+// Conventions (documented for users in docs/outputs.md):
 // - ETRS89 and WGS 84 are treated as the same earth-fixed frame (no time-dependent transformation between them;
 //   today they differ by ~0.5-1 m in Europe). Each uses its own ellipsoid (GRS 1980 / WGS 84), which differ by
 //   0.1 mm in semi-minor axis, so the UTM numbers agree with PROJ's EPSG definitions to < 1 mm.

@@ -1,5 +1,5 @@
 #pragma once
-// SAC's "combine" step as refinement (the paper is vague here; see README "SAC fusion: choices"): a pixel that the
+// SAC's "combine" step as refinement (the paper is vague here; see docs/design.md): a pixel that the
 // collapse emits from its selected view v keeps v's pixel grid (so the point count stays SAC's), but its depth
 // along v's ray becomes the weighted mean of where v's own depth map and every agreeing neighbour depth map put
 // the surface on that ray.
@@ -70,14 +70,14 @@
 //    0.9440 / 0.9442 / 0.9444, x2.5 0.8842 -> 0.8855 / 0.8860 / 0.8857 / 0.8846; but our bench at 0.75 (%) city
 //    85.07 -> 84.89, x2.5 53.92 -> 53.33, zurich 96.98 -> 96.96, x2.5 77.74 -> 77.40, montpellier 96.15 -> 96.14,
 //    x2.5 72.17 -> 71.81 (its noise is truncated), and no half-way line of issue 12 is crossed, so it is not the
-//    default. Only near a depth jump of the own view (README) it keeps most of the aerial-bench gain and still
+//    default. Only near a depth jump of the own view it keeps most of the aerial-bench gain and still
 //    loses 0.1-0.2 points on our error-scale-2.5 blocks.
 //    `later_pass_min_shift_gsd` (`fusion.combine_later_pass_min_shift_gsd`, default 1; issue 13): a later pass is
 //    made only where the previous one moved the centre by at least this many local GSDs; where it moved less, the
 //    later pass would start from almost the same point on the ray and find almost the same surfaces. On a
 //    full-scale Dortmund tile 52 % of the first passes move the centre less than 1 GSD (28 % less than 0.5, 83 %
 //    less than 2); aerial-bench Montpellier 70 %, its x2.5 block 39 % (noisier depths move further). Measured
-//    2026-11-28 (README "Where SAC's time goes"): Dortmund tile 6_6 CPU -4 %; F1 at 2x GSD 0 (always) -> 1 -> 2,
+//    2026-11-28 (docs/design.md): Dortmund tile 6_6 CPU -4 %; F1 at 2x GSD 0 (always) -> 1 -> 2,
 //    aerial-bench Montpellier 0.9765 -> 0.9767 -> 0.9766, x2.5 0.9559 -> 0.9559 -> 0.9558, Zurich 0.9661 ->
 //    0.9663 -> 0.9664, x2.5 0.9499 -> 0.9500 -> 0.9493, St Barth 0.9470 -> 0.9470 -> 0.9470, x2.5 0.9144 ->
 //    0.9144 -> 0.9136: 1 keeps every block, 2 loses at x2.5.

@@ -3,7 +3,7 @@
 // combine read the other views' depth maps around its point, and the next pixel of a patch reads next to it, so those
 // reads stay in cache. Row by row, a wide view (8,176 px at Dortmund scale) crosses an oblique view's rows at an
 // angle and touches a new cache line of each of 40 views per pixel, evicted before the next row comes back to it:
-// visiting a Dortmund tile in patches made it 1.2x faster with the same output (README, "Where SAC's time goes").
+// visiting a Dortmund tile in patches made it 1.2x faster with the same output.
 #include <algorithm>
 
 #include "core/pixel_window.h"

@@ -13,10 +13,10 @@
 //    judging views (the combine views, up to 40) see through it: their depth at X's projection lies beyond X by more
 //    than the tolerance and more than free_space_sigmas sigma of the two depths' difference, so X floats in space
 //    they observed empty (fattened foreground at depth jumps, blunders, noisy canopy). Measured on aerial-bench
-//    Montpellier (README): asking also that more views see through X than agree with it removed nothing.
+//    Montpellier (docs/design.md): asking also that more views see through X than agree with it removed nothing.
 //    A view counts only where every valid depth within free_space_window_px (1) of X's projection sees through:
 //    beside an edge of that view, a pixel of registration error would otherwise make a true roof edge free space
-//    (aerial-bench St Barth F1 0.9413 -> 0.9431, README). Not for points within free_space_edge_band_px (2) of a
+//    (aerial-bench St Barth F1 0.9413 -> 0.9431, docs/design.md). Not for points within free_space_edge_band_px (2) of a
 //    foreground edge of their own view (core/depth_edge.h): there the foreground is fattened, and the see-through
 //    views' windows would hold their own fattening, so those points are judged by the pixel alone.
 //    The judges are asked in the consulted views' order (those that see the point's region best first), and a

@@ -1,6 +1,6 @@
 #pragma once
 // Options of Select-and-Combine fusion (YAML section `fusion`). Defaults were chosen by measured F1 on simulated
-// blocks with errors (see README "SAC fusion: choices"); units in each comment.
+// blocks with errors (see docs/design.md); units in each comment.
 #include <string>
 
 #include "core/superpixels.h"
@@ -67,7 +67,7 @@ struct SacOptions {
   double free_space_sigmas = 3.0;
   // A point that none of the first free_space_early_pass_views judges (the consulted views, those that see its
   // region best first) sees through passes without asking the rest (0 = always every judge). Issue 13: with 16,
-  // Dortmund tile 6_6 -11 % CPU, aerial-bench F1 within -0.0001 / +0.0003 (README "Where SAC's time goes").
+  // Dortmund tile 6_6 -11 % CPU, aerial-bench F1 within -0.0001 / +0.0003 (docs/design.md).
   int free_space_early_pass_views = 16;
   // A view sees through a point only where every valid depth within this many pixels of the point's projection
   // does (0 = the pixel alone): one pixel of registration error then does not make the pixels next to an edge of

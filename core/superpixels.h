@@ -27,7 +27,7 @@ struct SuperpixelOptions {
   // slic | slico | mslic (cv::ximgproc) | fast (our own SLIC, core/slic_fast.h: SLIC's distance with `ruler`,
   // seeds on a region_size_px grid moved to the lowest gradient in 3x3, run-based connectivity; deterministic).
   // Default fast: ~8x slico's speed (24-47 Mpx/s on 2 threads vs 3-5) at -0.08 / -0.02 F1 on the small block
-  // (README "Superpixels at block scale").
+  // (docs/design.md).
   // pixels: no clustering, every pixel its own node (the paper's per-point Netlets, Section III.B; the ablation
   // of III.C — memory and time grow with the pixel count, for small blocks only).
   std::string algorithm = "fast";

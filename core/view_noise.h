@@ -39,7 +39,7 @@ struct ViewNoiseOptions {
   // 2048 x 8^2 = 131,072 pixels keep step 8; an 800 x 600 view gets step 16, a 1.3 Mpx tile window 26, a 50 Mpx
   // view 157. 2,048 rather than 8,192 (2026-11-26, twelfth session): aerial-bench Montpellier's noise stage 0.75 ->
   // 0.21 s, wall 0.90x; F1 at 2x GSD within -0.0006..+0.0003 on the six aerial-bench blocks and -0.01..+0.31 points
-  // on our six (README "Where SAC's time goes").
+  // on our six.
   int max_samples_per_view = 2048;  // <= 0: no cap
   int min_samples = 50;       // residuals a view pair needs to count
   double gate_gsd = 12.0;     // residuals within this many local GSDs count. Not fusion.combine_gate_gsd (4): a gate
@@ -49,7 +49,7 @@ struct ViewNoiseOptions {
   // (0 = gate_gsd only). With a gate fixed in GSDs, the noisier views' residuals are cut off inside the noise and k
   // comes out low, most for the noisiest: aerial-bench Montpellier x2.5 gave its obliques 0.0143 against the
   // 0.0167 they carry (nadirs 0.0129 against 0.0125), our city x2.5 0.017-0.023 against 0.023 / 0.035. 2.5 sigma
-  // (2026-11-27, twenty-first session; README "SAC fusion: the choices"): our bench x2.5 +1.5 to +3.2 points at
+  // (2026-11-27; docs/design.md): our bench x2.5 +1.5 to +3.2 points at
   // 2x GSD, aerial-bench x2.5 +0.0003 to +0.0021, the scale-1 blocks within -0.03 points and +-0.0001.
   double gate_sigmas = 2.5;
   double min_slope = 0.2;     // as DepthCombineOptions::min_slope

@@ -1,7 +1,7 @@
 #pragma once
 // Camera files: the interior and exterior orientation of every view of a block plus the paths of its depth raster
 // and (optionally) its image, in YAML or CSV (the file's extension decides: .yaml/.yml or .csv). Both forms use the
-// same field names; the README has a worked example of each.
+// same field names; docs/inputs.md has a worked example of each.
 //
 // Fields of a view (units in the names):
 //   image          image name: names the view (unique); LAS point source ID = position in the file + 1

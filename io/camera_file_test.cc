@@ -34,7 +34,7 @@ void ExpectError(const fs::path& path, const std::vector<std::string>& parts) {
   }
 }
 
-// The README's YAML example: a 50 mm camera with 6 um pixels, the principal point 0.012 mm right of and 0.006 mm
+// A worked YAML example: a 50 mm camera with 6 um pixels, the principal point 0.012 mm right of and 0.006 mm
 // below the image centre.
 const char* kYamlExample = R"(version: 1
 cameras:
@@ -81,7 +81,7 @@ TEST(CameraFileTest, ReadsTheYamlExample) {
   EXPECT_EQ(b.attitude_frame, AttitudeFrame::kLocalEnu);
 }
 
-// The README's CSV example: pixel interior, geodetic positions (attitude then defaults to local ENU), a quoted
+// A worked CSV example: pixel interior, geodetic positions (attitude then defaults to local ENU), a quoted
 // image name with a comma, a comment and an empty image_path cell.
 const char* kCsvExample =
     "# image,depth,... one view per line\n"

@@ -106,7 +106,7 @@ TEST(ViewIdentityTest, JsonRoundTrip) {
 }
 
 // Throughput of FNV-1a as implemented (io/file_checksum.h) on a 64 MiB file in the page cache: the sampled hash
-// reads 128 KiB of it; the full hash every byte. Printed for the README; asserts only that both ran.
+// reads 128 KiB of it; the full hash every byte. Printed for docs/design.md (input identities); asserts only that both ran.
 TEST(ViewIdentityTest, HashingThroughput) {
   testing::TempDir dir;
   const fs::path path = dir.path() / "big.bin";

@@ -442,7 +442,7 @@ std::string NumbersSection(const ReportData& d, const ReportFigures& f) {
       << (d.eval.result_stride > 1 ? Row("result subsampled", "every " + std::to_string(d.eval.result_stride) + "th point")
                                    : "")
       << (d.eval.aligned ? Row("aligned", "robust ICP before scoring") : "") << "</table>"
-      << "<div class='sub'>Density-normalised (per-voxel) scores of <code>eval.json</code>; see README, Evaluation.</div>";
+      << "<div class='sub'>Density-normalised (per-voxel) scores of <code>eval.json</code>; see docs/evaluation.md.</div>";
   } else if (d.eval.stale) {
     s << "<p class='note'>eval.json is older than " << d.cloud.name << ", so its scores describe an earlier cloud and are not "
          "shown; <code>sacfuse run</code> rescores (or run <code>sacfuse eval</code>, then <code>sacfuse report</code>).</p>";

@@ -82,7 +82,7 @@ class QueueEndToEndTest : public testing::TinyBlockSuite {
 };
 
 TEST_F(QueueEndToEndTest, PlanListPrintsOnlyTilesWithViews) {
-  ASSERT_EQ(ids_.size(), 65u);  // the tiny block's tiles with views (README "Tiling and resume")
+  ASSERT_EQ(ids_.size(), 65u);  // the tiny block's tiles with views (docs/large-blocks.md)
   for (const auto& id : ids_) EXPECT_NE(id.find('_'), std::string::npos) << id;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // How much memory the steps of a run take, so tile sizes and tile parallelism can be chosen from
 // `resources.memory_gb` before anything is loaded. Coefficients were measured with /usr/bin/time -v on simulated
-// blocks (README "Memory budget") and carry a margin; peak RSS of real runs is reported next to the estimate.
+// blocks (docs/concepts.md, "The memory budget") and carry a margin; peak RSS of real runs is reported next to the estimate.
 #include <cstdint>
 #include <vector>
 

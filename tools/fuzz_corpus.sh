@@ -62,7 +62,7 @@ mkdir -p "$out/colmap_text" "$out/camera_csv" "$out/colmap_array"
   printf '2 0.0087 0.9999 0 0 5 2 100 2 sub/nadir_2.jpg\n\n%s' "$sep"
   printf '# 3D point list\n1 5 -2 0.5 200 100 50 0.3 1 0 2 0\n'; } > "$out/colmap_text/hand_model"
 cat > "$out/camera_csv/hand_cameras" <<'CSV'
-# README example
+# a hand-made example
 image,depth,image_path,width_px,height_px,focal_px,cx_px,cy_px,x_m,y_m,z_m,omega_deg,phi_deg,kappa_deg
 a.jpg,depth.tif,,16,12,20,8,6,390512.25,5705130.5,1065,0.5,-1.25,90
 "b,c.jpg",depth.tif,,16,12,20,,,390612.25,5705130.5,1066,0,0,0

@@ -2,7 +2,7 @@
 # Builds oneTBB with ThreadSanitizer from Debian's own source package (the version of the installed libtbb-dev) and
 # installs it into PREFIX (default build-tsan/onetbb). tools/sanitize.sh tsan links the tests against it: with
 # Debian's uninstrumented libtbb, TSan cannot see TBB's own synchronisation and reports races inside the library
-# (false positives, README "Sanitizers").
+# (false positives, docs/development.md, "Sanitizers").
 #   tools/tsan_onetbb.sh [PREFIX]
 # Needs deb-src entries for apt (`apt-get source`); tools/install_deps.sh does not add them. ~3 CPU minutes.
 set -euo pipefail

@@ -1,7 +1,7 @@
 #pragma once
 // `sacfuse bench`, aerial-bench part 1: which blocks of the independent aerial-bench (../shared/aerial-bench, a
 // simulator over real LiDAR with its own peers and scorer) to make and how. The six definitions are those of
-// issue 12 and the README: Montpellier = the six IGN tiles at GSD 0.25 m, Zurich = zurich.las at GSD 0.125 m
+// issue 12 and docs/evaluation.md: Montpellier = the six IGN tiles at GSD 0.25 m, Zurich = zurich.las at GSD 0.125 m
 // with 0.25 m DSM cells, St Barth (the third city) = IGN's 100 m Saint-Barthelemy subset as Zurich, `_e25` =
 // every error x 2.5. Pure but for existence checks of the files it needs.
 #include <string>

@@ -1,4 +1,4 @@
-// Which aerial-bench blocks `sacfuse bench` makes: the six definitions of the README, LiDAR
+// Which aerial-bench blocks `sacfuse bench` makes: the six definitions of docs/evaluation.md, LiDAR
 // files expanded, and blocks skipped with a reason when the aerial-bench folder or a LiDAR file is missing.
 #include <fstream>
 

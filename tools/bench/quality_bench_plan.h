@@ -46,7 +46,7 @@ std::string DefaultLidarDir();
 // One entry of the block catalogue: a LiDAR city and the crop that makes a block of about the small preset's size.
 struct LidarCity {
   const char* name;
-  const char* file;      // relative to the LiDAR folder; .laz is not readable (no LAZ decoder)
+  const char* file;      // relative to the LiDAR folder; .las or .laz
   double area_m;         // `simulate --area` (centred square crop), metres; 0 = the preset's area (or the file)
   bool in_default;       // part of the default --blocks (false: reference too sparse to score 2 x GSD)
   const char* note;      // what the file is

@@ -1,5 +1,5 @@
 // sacfuse_laz_bench: compression ratio and write/read speed of LAZ against LAS, through LasWriter and LasReader.
-// Not a test: prints a Markdown table (README "LAZ output").
+// Not a test: prints a Markdown table (docs/benchmarks.md).
 //
 //   sacfuse_laz_bench [--las FILE] [--points N] [--dir DIR]
 //
