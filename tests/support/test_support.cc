@@ -52,6 +52,11 @@ std::string SacfuseBinary() {
   return env;
 }
 
+std::filesystem::path SourceDir() {
+  if (const char* env = std::getenv("SACFUSE_SOURCE_DIR"); env != nullptr && *env != '\0') return env;
+  return std::filesystem::path(__FILE__).parent_path().parent_path().parent_path();
+}
+
 std::string ReadFileBytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());

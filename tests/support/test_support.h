@@ -42,6 +42,10 @@ std::optional<std::filesystem::path> SharedDir();
 // Path of the built sacfuse binary ($SACFUSE_BIN), for end-to-end tests.
 std::string SacfuseBinary();
 
+// The source tree ($SACFUSE_SOURCE_DIR, set by CTest for the end-to-end tests, else three folders above this
+// file), for tests of committed files (generated docs, CMakeLists.txt's version).
+std::filesystem::path SourceDir();
+
 // Whole file as bytes ("" when it cannot be read).
 std::string ReadFileBytes(const std::filesystem::path& path);
 
