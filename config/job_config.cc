@@ -11,6 +11,7 @@
 
 #include "config/config_schema.h"
 #include "config/option_table.h"
+#include "core/cell_window.h"
 #include "core/crs.h"
 #include "core/error.h"
 #include "io/input_file.h"
@@ -84,6 +85,12 @@ void CheckCrossKeyRules(const JobConfig& c, std::vector<OptionError>* errors) {
     errors->push_back(
         {"tiling.z_max_m", Number(c.tiling.z_max_m), "must be > tiling.z_min_m (" + Number(c.tiling.z_min_m) + ")"});
   }
+  if (DsmWanted(c) && c.output.dsm_cell_m > 0 && c.tiling.tile_size_m > 0 &&
+      !IsWholeNumberOfCells(c.tiling.tile_size_m, c.output.dsm_cell_m)) {
+    errors->push_back({"output.dsm_cell_m", Number(c.output.dsm_cell_m),
+                       "must divide tiling.tile_size_m (" + Number(c.tiling.tile_size_m) +
+                           ") into whole cells, so that tiles share the DSM's cells"});
+  }
   if (c.tiling.tile_size_m > 0 && method == FusionMethodKind::kSac && c.fusion.sac.correspondence == "dense") {
     errors->push_back({"fusion.correspondence", c.fusion.sac.correspondence,
                        "dense is not supported by tiled runs yet (tiling.tile_size_m > 0); use reprojection or "
@@ -100,6 +107,12 @@ std::vector<OptionError> JobConfigErrors(const JobConfig& c) {
 }
 
 }  // namespace
+
+bool DsmWanted(const JobConfig& config) {
+  if (config.output.dsm == "on") return true;
+  if (config.output.dsm == "off") return false;
+  return config.crs.find_first_not_of(" \t") != std::string::npos;
+}
 
 void ValidateJobConfig(const JobConfig& c) {
   const std::vector<OptionError> errors = JobConfigErrors(c);

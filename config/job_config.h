@@ -34,6 +34,12 @@ struct OutputOptions {
   std::string format = "laz";           // laz (LASzip-compressed, io/laz_*.h) | las (uncompressed): DIR/fused.<format>
   std::string las_version = "1.4";      // 1.4 (point format 7) | 1.2 (point format 3)
   double scale_m = 0.001;               // LAS coordinate quantum, metres (10^k x {1, 0.5, 0.25})
+  // The DSM raster product (docs/dsm-and-ortho.md; jobs/dsm_product.h): DIR/dsm.tif, a float32 Cloud Optimized
+  // GeoTIFF, or DIR/dsm.vrt over DIR/dsm/*.tif for extents too large for one file (raster_layout).
+  std::string dsm = "auto";             // auto (on when `crs` is set) | on | off
+  double dsm_cell_m = 0.0;              // cell edge, metres; 0 = automatic (2 x the block's GSD, rounded)
+  double dsm_max_hole_m = 2.0;          // holes up to this size (m, each side) are filled from their rim
+  std::string raster_layout = "auto";   // auto | single (one COG) | tiles (COG blocks + a VRT)
 };
 
 struct FusionOptions {
@@ -84,6 +90,10 @@ struct JobConfig {
   LogOptions log;
   std::string source_file;  // the YAML file this came from ("" for defaults)
 };
+
+// Whether the run writes the DSM: output.dsm on, or auto with a project CRS (a run in a CRS-less local frame, e.g.
+// an SfM reconstruction whose z need not point up, gets no DSM unless asked for).
+bool DsmWanted(const JobConfig& config);
 
 // Reads, type-checks and validates a YAML config. Unknown keys, wrong types and out-of-range values throw
 // ConfigError naming the file, line, key, value and rule (all problems at once). Relative paths are resolved

@@ -70,6 +70,19 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "LAS version: 1.4 (point format 7) | 1.2 (format 3)");
   s.AddDouble("output.scale_m", &c->output.scale_m, Affects("m", Closed(1e-6, 1.0)),
               "LAS coordinate quantum, metres; 10^k x {1, 0.5, 0.25}");
+  // The DSM's keys never change the points; what a tile's DSM window depends on enters the resume hash through
+  // ResultSettingsText (config/result_settings.cc) only when the run writes a DSM.
+  s.AddString("output.dsm", &c->output.dsm, Neutral("-", Choices({"auto", "on", "off"})),
+              "DSM raster DIR/dsm.tif (float32 Cloud Optimized GeoTIFF): auto (on when crs is set) | on | off");
+  s.AddDouble("output.dsm_cell_m", &c->output.dsm_cell_m, Neutral("m", Closed(0, 1000)),
+              "DSM cell edge, metres; 0 = 2 x the block's GSD rounded to 1, 2, 2.5 or 5 x 10^k; must divide "
+              "tiling.tile_size_m");
+  s.AddDouble("output.dsm_max_hole_m", &c->output.dsm_max_hole_m, Neutral("m", Closed(0, 1000)),
+              "DSM holes up to this size, metres on each side, are filled from their rim; larger ones stay nodata "
+              "(0 = none filled)");
+  s.AddString("output.raster_layout", &c->output.raster_layout, Neutral("-", Choices({"auto", "single", "tiles"})),
+              "raster products: single (one COG) | tiles (COG blocks in DIR/dsm/ and DIR/dsm.vrt) | auto (tiles "
+              "beyond 2^30 cells)");
   CoregistrationOptions& co = c->coregistration;  // every method: a block-level stage before tiling
   s.AddBool("coregistration.enabled", &co.enabled, Affects("-", {}),
             "correct every view's pose against its neighbours' depth maps before fusion (core/coregistration.h)");

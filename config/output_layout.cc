@@ -21,6 +21,9 @@ std::string PlanJsonPath(const JobConfig& config) { return InOutputDir(config, "
 std::string CoregistrationPath(const JobConfig& config) { return InOutputDir(config, "coregistration.json"); }
 std::string TilesDir(const JobConfig& config) { return InOutputDir(config, "tiles"); }
 std::string ReportDir(const JobConfig& config) { return InOutputDir(config, "report"); }
+std::string DsmPath(const JobConfig& config) { return InOutputDir(config, "dsm.tif"); }
+std::string DsmVrtPath(const JobConfig& config) { return InOutputDir(config, "dsm.vrt"); }
+std::string DsmBlocksDir(const JobConfig& config) { return InOutputDir(config, "dsm"); }
 
 std::string SuperpixelCacheDir(const JobConfig& config) {
   return config.fusion.superpixel_cache_dir.empty() ? InOutputDir(config, "superpixels")

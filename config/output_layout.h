@@ -11,6 +11,8 @@
 //   DIR/coregistration.json     per-view pose corrections, reused while inputs and options are unchanged
 //                               (jobs/coregistered_block.h)
 //   DIR/tiles/                  per-tile state of tiled runs (tiles/tile_manifest.h, tiles/tile_marker.h)
+//   DIR/dsm.tif                 the DSM (output.dsm), one Cloud Optimized GeoTIFF (jobs/dsm_product.h), or
+//   DIR/dsm.vrt + DIR/dsm/      a VRT over COG blocks (output.raster_layout)
 //   DIR/report/                 the HTML report (report/report_writer.h)
 //   DIR/superpixels/            superpixel and colour caches (or fusion.superpixel_cache_dir; jobs/superpixel_cache.h)
 #include <string>
@@ -28,7 +30,10 @@ std::string RunStatePath(const JobConfig& config);
 std::string PlanJsonPath(const JobConfig& config);
 std::string CoregistrationPath(const JobConfig& config);
 std::string TilesDir(const JobConfig& config);
-std::string ReportDir(const JobConfig& config);  // the default report folder (`sacfuse report --out` may differ)
+std::string ReportDir(const JobConfig& config);
+std::string DsmPath(const JobConfig& config);       // DIR/dsm.tif
+std::string DsmVrtPath(const JobConfig& config);    // DIR/dsm.vrt
+std::string DsmBlocksDir(const JobConfig& config);  // DIR/dsm  // the default report folder (`sacfuse report --out` may differ)
 
 // The superpixel (and colour) cache folder of a job: fusion.superpixel_cache_dir, or <output.dir>/superpixels.
 std::string SuperpixelCacheDir(const JobConfig& config);

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "config/option_table.h"
+#include "core/dsm_rule.h"
 #include "io/file_checksum.h"
 
 namespace sacfuse {
@@ -27,6 +28,15 @@ std::string ResultSettingsText(const JobConfig& config) {
   std::string text;
   for (const OptionRow& row : JobOptionRows(config)) {
     if (row.spec.affects_results) text += row.key + ": " + row.value + "\n";
+  }
+  // A tile's DSM window (jobs/dsm_product.h) depends on whether the run writes a DSM, its cell (as configured: an
+  // automatic cell follows from the inputs and the tile size, both checked already) and the cell rule; the rest of
+  // the DSM's keys act only when the tiles are assembled. Absent without a DSM, so such runs keep their hash.
+  if (DsmWanted(config)) {
+    const DsmRule rule;
+    text += "output.dsm: \"on\"\noutput.dsm_cell_m: " + OptionValueText(config.output.dsm_cell_m) +
+            "\noutput.dsm_cell_rule: \"quantile " + OptionValueText(rule.quantile) + ", min_points " +
+            std::to_string(rule.min_points) + "\"\n";
   }
   return text;
 }

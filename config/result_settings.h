@@ -2,8 +2,9 @@
 // The part of a config that affects a run's results: the keys whose row in config/option_table.cc says so (every
 // input.*, fusion.*, superpixels.*, consistency.*, disparity_normal.*, tsdf.*, multiray.* and tiling.* key, crs,
 // output.scale_m and output.las_version; not output.dir, output.format, fusion.superpixel_cache_dir (where files
-// go, not what they hold), tiling.claim_timeout_s, resources.*, evaluation.*, log.*). Tiled runs fingerprint it so
-// that tiles computed under another config are never reused.
+// go, not what they hold), tiling.claim_timeout_s, resources.*, evaluation.*, log.*), and, when the run writes a
+// DSM (DsmWanted), what each tile's DSM window depends on: output.dsm, output.dsm_cell_m and the cell rule. Tiled
+// runs fingerprint it so that tiles computed under another config are never reused.
 #include <string>
 #include <vector>
 

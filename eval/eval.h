@@ -35,11 +35,13 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "eval/dsm_accuracy.h"
 #include "core/geo_mask.h"
 #include "eval/eval_options.h"
 
@@ -77,6 +79,7 @@ struct EvalReport {
   std::map<uint16_t, uint64_t> source_id_histogram;  // LAS point source ID -> result points
   bool aligned = false;
   Eigen::Matrix4d alignment = Eigen::Matrix4d::Identity();  // result_from_input, in the input CRS
+  std::optional<DsmAccuracy> dsm;  // the DSM's accuracy when one was scored (eval/dsm_accuracy.h)
 };
 
 // Every point of a result cloud, in chunks: calls `chunk` once per chunk, in any order (for clouds too large to

@@ -47,6 +47,18 @@ std::string EvalReportToJson(const EvalReport& r, int indent) {
     m.push_back({r.alignment(row, 0), r.alignment(row, 1), r.alignment(row, 2), r.alignment(row, 3)});
   }
   j["alignment"] = m;
+  if (r.dsm) {
+    const auto stats = [](const DsmErrorStats& s) {
+      return nlohmann::json{{"cells", s.cells},       {"cells_with_value", s.cells_with_value},
+                            {"completeness", s.completeness}, {"median_m", s.median_m},
+                            {"nmad_m", s.nmad_m},     {"rmse_m", s.rmse_m},
+                            {"within_2gsd", s.within_2gsd}};
+    };
+    nlohmann::json by_class = nlohmann::json::object();
+    for (const auto& [name, s] : r.dsm->by_class) by_class[name] = stats(s);
+    j["dsm"] = {{"file", r.dsm->dsm_path}, {"cell_m", r.dsm->cell_m}, {"gsd_m", r.dsm->gsd_m},
+                {"all", stats(r.dsm->all)}, {"by_class", by_class}};
+  }
   return j.dump(indent);
 }
 

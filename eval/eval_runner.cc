@@ -1,9 +1,11 @@
 #include "eval/eval_runner.h"
 
 #include <cstdio>
+#include <filesystem>
 
 #include <spdlog/spdlog.h>
 
+#include "config/output_layout.h"
 #include "eval/eval.h"
 #include "eval/eval_options.h"
 #include "eval/eval_report_json.h"
@@ -21,6 +23,12 @@ EvalRequest EvalRequestFromConfig(const JobConfig& config, const std::string& re
   request.align = config.evaluation.align;
   request.json_path = json_path;
   request.max_result_points = 0.5 * config.resources.memory_gb * (1 << 30) / 72.0;
+  if (DsmWanted(config)) {
+    for (const std::string& dsm : {DsmPath(config), DsmVrtPath(config)}) {
+      std::error_code ec;
+      if (std::filesystem::is_regular_file(dsm, ec)) request.dsm = dsm;
+    }
+  }
   return request;
 }
 
@@ -35,7 +43,7 @@ EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out) {
   options.max_result_points = request.max_result_points;
   ValidateEvalOptions(options);
   spdlog::info("evaluating {} against {}", request.result_las, request.reference_las);
-  const EvalReport report = EvaluateLasFiles(request.result_las, request.reference_las, options);
+  EvalReport report = EvaluateLasFiles(request.result_las, request.reference_las, options);
   if (report.result_stride > 1) {
     out << "accuracy scored on every " << report.result_stride << "th of " << report.result_points_in_file
         << " result points (memory budget); completeness against all of them\n";
@@ -46,6 +54,15 @@ EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out) {
     std::snprintf(line, sizeof(line), "F1 @ %.3f m (%.1f x GSD): %.2f %%  (accuracy %.2f %%, completeness %.2f %%)\n",
                   s.tau_m, s.tau_m / request.gsd_m, 100.0 * s.f1, 100.0 * s.accuracy, 100.0 * s.completeness);
     out << line;
+  }
+  if (!request.dsm.empty()) {
+    DsmAccuracyRequest dsm;
+    dsm.dsm_path = request.dsm;
+    dsm.reference_las = request.reference_las;
+    dsm.mask_png = request.mask_png;
+    dsm.gsd_m = request.gsd_m;
+    report.dsm = EvaluateDsm(dsm);
+    out << FormatDsmAccuracy(*report.dsm);
   }
   if (!request.json_path.empty()) {
     WriteEvalReportJson(report, request.json_path);

@@ -19,9 +19,11 @@ struct EvalRequest {
   bool align = false;
   std::string json_path;                  // "" = no JSON
   double max_result_points = 0;           // score every k-th point beyond this many (0 = all; EvalOptions)
+  std::string dsm;                        // a DSM raster to score too (eval/dsm_accuracy.h); "" = none
 };
 
-// The scoring a job config asks for (evaluation.*), of `result_las`, with its JSON at `json_path`; clouds too
+// The scoring a job config asks for (evaluation.*), of `result_las` (and of the run's DSM when it wrote one), with
+// its JSON at `json_path`; clouds too
 // large for half of resources.memory_gb (~72 bytes per scored point, measured) are scored on every k-th point.
 // Shared by `run` and `colmap-fusion`, so both score alike.
 EvalRequest EvalRequestFromConfig(const JobConfig& config, const std::string& result_las,

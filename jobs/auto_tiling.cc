@@ -13,6 +13,7 @@
 #include "jobs/method_memory.h"
 #include "tiles/tile_manifest.h"
 #include "tiles/tile_plan.h"
+#include "core/cell_window.h"
 
 namespace sacfuse {
 namespace {
@@ -88,7 +89,10 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
   const double in_progress = TileSizeOfRunInProgress(config);
   std::vector<double> candidates;
   if (in_progress > 0) candidates.push_back(in_progress);
+  const bool fixed_dsm_cell = DsmWanted(config) && config.output.dsm_cell_m > 0;
   for (const double s : kCandidateTileSizesM) {
+    // Tiles must hold whole DSM cells (an automatic cell is chosen to divide the tile size instead).
+    if (fixed_dsm_cell && !IsWholeNumberOfCells(s, config.output.dsm_cell_m)) continue;
     if (s >= 2.0 * config.tiling.halo_m) candidates.push_back(s);
   }
   uint64_t smallest_bytes = 0;

@@ -7,6 +7,34 @@
 
 namespace sacfuse {
 
+namespace {
+
+// The reference height: the median of the input's scene points, or the middle of [z_min, z_max] without them.
+double ReferenceHeight(const DepthBlock& input, double z_min_m, double z_max_m) {
+  std::vector<double> heights = input.SceneHeights();
+  if (heights.empty()) return 0.5 * (z_min_m + z_max_m);
+  std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+  return heights[heights.size() / 2];
+}
+
+// A view's depth along its optical axis at height z_ref and its focal length at depth-raster resolution; false for a
+// view whose principal ray does not come down to that height.
+bool DepthAndFocal(const View& view, const DepthRasterSize& size, double z_ref, double* z, double* fx) {
+  const Eigen::Vector3d direction = view.ViewDirectionInWorld();
+  if (!(direction.z() < -1e-9)) return false;
+  *z = (z_ref - view.CenterInWorld().z()) / direction.z();
+  *fx = view.camera.fx * size.width / view.camera.width;
+  return *z > 0 && *fx > 0;
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
 MethodGeometry BlockMethodGeometry(const DepthBlock& input, const std::vector<DepthRasterSize>& depth_sizes,
                                    double z_min_m, double z_max_m, const NeighborViewOptions& options) {
   const std::vector<View>& views = input.views();
@@ -15,34 +43,33 @@ MethodGeometry BlockMethodGeometry(const DepthBlock& input, const std::vector<De
   std::vector<Eigen::Vector3d> directions(n);
   std::vector<double> sigma(n, 1e300);
   std::vector<double> gsd;
-  std::vector<double> heights = input.SceneHeights();
-  double z_ref = 0.5 * (z_min_m + z_max_m);
-  if (!heights.empty()) {
-    std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
-    z_ref = heights[heights.size() / 2];
-  }
+  const double z_ref = ReferenceHeight(input, z_min_m, z_max_m);
   for (size_t v = 0; v < n; ++v) {
     const View& view = views[v];
     boxes[v] = FootprintBounds(view, z_min_m, z_max_m);
     directions[v] = view.ViewDirectionInWorld();
-    const Eigen::Vector3d centre = view.CenterInWorld();
-    if (directions[v].z() < -1e-9) {
-      const double z = (z_ref - centre.z()) / directions[v].z();  // depth along the optical axis
-      const double fx = view.camera.fx * depth_sizes[v].width / view.camera.width;
-      if (z > 0 && fx > 0) {
-        sigma[v] = z * z / fx;
-        gsd.push_back(z / fx);
-      }
+    double z = 0, fx = 0;
+    if (DepthAndFocal(view, depth_sizes[v], z_ref, &z, &fx)) {
+      sigma[v] = z * z / fx;
+      gsd.push_back(z / fx);
     }
   }
   MethodGeometry out;
   out.plan.neighbors = NeighborsFromFootprints(boxes, directions, options);
   out.plan.order = PrecisionOrder(sigma);
-  if (!gsd.empty()) {
-    std::nth_element(gsd.begin(), gsd.begin() + gsd.size() / 2, gsd.end());
-    out.gsd_m = gsd[gsd.size() / 2];
-  }
+  out.gsd_m = Median(gsd);
   return out;
+}
+
+double BlockDepthGsd(const DepthBlock& input, const std::vector<DepthRasterSize>& depth_sizes, double z_min_m,
+                     double z_max_m) {
+  const double z_ref = ReferenceHeight(input, z_min_m, z_max_m);
+  std::vector<double> gsd;
+  for (size_t v = 0; v < input.views().size(); ++v) {
+    double z = 0, fx = 0;
+    if (DepthAndFocal(input.views()[v], depth_sizes[v], z_ref, &z, &fx)) gsd.push_back(z / fx);
+  }
+  return Median(gsd);
 }
 
 ViewPlan SubsetViewPlan(const ViewPlan& block_plan, const std::vector<uint32_t>& view_ids) {

@@ -26,6 +26,10 @@ struct MethodGeometry {
 MethodGeometry BlockMethodGeometry(const DepthBlock& input, const std::vector<DepthRasterSize>& depth_sizes,
                                    double z_min_m, double z_max_m, const NeighborViewOptions& options);
 
+// The block's GSD alone (MethodGeometry::gsd_m, without the neighbour plan), metres; 0 when no view looks down.
+double BlockDepthGsd(const DepthBlock& input, const std::vector<DepthRasterSize>& depth_sizes, double z_min_m,
+                     double z_max_m);
+
 // The plan restricted to `view_ids` (a tile's views, ascending): positions renumbered to the subset, neighbours
 // outside it dropped, the order kept.
 ViewPlan SubsetViewPlan(const ViewPlan& block_plan, const std::vector<uint32_t>& view_ids);

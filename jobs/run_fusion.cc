@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -103,7 +104,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                             {"tiling_decision", {{"tile_size_m", s.tile_size_m}, {"reason", s.tiling_reason}}},
                             {"stage_wall_seconds",
                              {{"coregistration", s.coregistration.seconds}, {"superpixels", s.superpixel_seconds},
-                              {"tiles", s.tiles_seconds}, {"merge", s.merge_seconds}}},
+                              {"tiles", s.tiles_seconds}, {"merge", s.merge_seconds}, {"dsm", s.dsm.seconds}}},
                             {"views", views}};
   if (s.coregistration.enabled) {
     const CoregistrationOutcome& c = s.coregistration;
@@ -123,6 +124,13 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                    {"tiles_skipped", s.tiles_skipped}, {"failed_tiles", failed}};
   }
   j["fusion"] = FusionStatsJson(s.fusion, s.tiles_run > 0);
+  if (s.dsm.written) {
+    const DsmOutcome& d = s.dsm;
+    j["dsm"] = {{"file", d.path}, {"cell_m", d.cell_m}, {"cols", d.cols}, {"rows", d.rows},
+                {"cells_with_value", d.cells_with_value}, {"cells_from_points", d.raw_cells_with_value},
+                {"cells_filled", d.cells_filled}, {"files", d.files},
+                {"seconds", d.seconds}};
+  }
   WriteFileAtomically(s.report_path, j.dump(2) + "\n");
 }
 
@@ -175,6 +183,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
   summary->failed_tiles = tiled.failed;
   summary->tiles_seconds = tiled.tiles_seconds;
   summary->merge_seconds = tiled.merge_seconds;
+  summary->dsm = tiled.dsm;
   summary->output_points = tiled.merged_points;
   for (auto& v : summary->views) {
     const size_t i = &v - summary->views.data();
@@ -214,6 +223,12 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   SetFusionSummary(fused.stats, summary);
   writer.Close();
   summary->output_points = writer.num_points();
+  // The DSM over the project area, the same extent a tiled run of the block has (the one-tile plan's area).
+  if (const std::optional<DsmGrid> dsm = DsmGridOf(config, input, BuildTilePlan(input, config.tiling).grid.area())) {
+    summary->dsm = MakeUntiledDsm(config, *dsm, summary->las_path);
+  } else {
+    RemoveDsmFiles(config);
+  }
   for (size_t i = 0; i < views.size(); ++i) {
     const uint32_t v = views[i].index;
     summary->views[i].output_points = v < fused.points_per_view.size() ? fused.points_per_view[v] : 0;

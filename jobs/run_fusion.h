@@ -1,5 +1,6 @@
 #pragma once
-// `sacfuse run`: read the configured input, fuse, write DIR/fused.las, the effective config and run_report.json,
+// `sacfuse run`: read the configured input, fuse, write DIR/fused.las (and the DSM, DIR/dsm.tif, when output.dsm
+// asks for it: jobs/dsm_product.h), the effective config and run_report.json,
 // score the cloud when evaluation.reference is set (DIR/eval.json, eval/eval_runner.h), then write the HTML report
 // once (report/report_writer.h).
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include "core/fusion_stats.h"
 #include "core/sac_fusion.h"
 #include "jobs/coregistered_block.h"
+#include "jobs/dsm_product.h"
 #include "io/las_writer.h"
 
 namespace sacfuse {
@@ -49,6 +51,7 @@ struct RunSummary {
   double tiles_seconds = 0.0;       // tiled: the tile stage
   double merge_seconds = 0.0;       // tiled: merging the tiles into fused.las
   std::string eval_text;            // evaluation.reference set: the score table and F1 lines (eval/eval_runner.h)
+  DsmOutcome dsm;                   // output.dsm: DIR/dsm.tif (jobs/dsm_product.h)
 };
 
 // Called as work proceeds: stage name, units done, units total.

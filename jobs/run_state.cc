@@ -143,6 +143,7 @@ size_t RemoveTemporaryFilesOfKilledRuns(const JobConfig& config) {
   remove(config.output.dir, false);
   remove(tiles_dir, false);
   remove(ReportDir(config), false);
+  remove(DsmBlocksDir(config), false);
   remove(SuperpixelCacheDir(config), true);
   if (removed > 0) spdlog::info("removed {} temporary files left by an interrupted run", removed);
   return removed;

@@ -1,12 +1,14 @@
 #include "jobs/tile_queue.h"
 
 #include <filesystem>
+#include <optional>
 
 #include "config/output_layout.h"
 #include "config/result_settings.h"
 #include "core/error.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/coregistered_block.h"
+#include "jobs/dsm_product.h"
 #include "jobs/las_options.h"
 #include "jobs/open_input.h"
 #include "jobs/thread_limit.h"
@@ -54,8 +56,11 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   if (tile == nullptr) {
     throw ConfigError("--id " + id + ": not a tile with views of this job (see `sacfuse plan CONFIG --list`)");
   }
-  const TileJob job{config, *input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
-                    identity.views};
+  TileJob job{config, *input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
+              identity.views, /*caches_ready=*/false, {}};
+  const std::optional<DsmGrid> dsm = DsmGridOf(config, *input, plan.grid.area());
+  std::optional<DsmTileProduct> dsm_product;
+  if (dsm) job.products.push_back(&dsm_product.emplace(*dsm));
   fs::create_directories(job.tiles_dir);
   const TileInputs inputs = TileInputsOf(*tile, input->views(), identity.views);
   if (VerifyTileDone(job.tiles_dir, id, job.hash, true, &inputs).done) return {};
@@ -74,6 +79,11 @@ MergeJobOutcome MergeJob(const JobConfig& given) {
   out.missing = MissingTiles(config, *input, plan, identity.views);
   if (!out.missing.empty()) return out;
   out.merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), out.fused_las_path);
+  if (const std::optional<DsmGrid> dsm = DsmGridOf(config, *input, plan.grid.area())) {
+    out.dsm = AssembleTiledDsm(config, plan, *dsm);
+  } else {
+    RemoveDsmFiles(config);
+  }
   return out;
 }
 

@@ -2,12 +2,14 @@
 // The tile list of a tiled run as a work queue for several processes or machines sharing DIR:
 //   `sacfuse plan CONFIG --list`   PlanJob: the tile ids with views (SharedTilePlan, tiles/tile_plan.h)
 //   `sacfuse tile CONFIG --id ID`  RunOneTile: computes exactly one tile under its claim (tiles/tile_claim.h)
-//   `sacfuse merge CONFIG`         MergeJob: merges once every tile with views is done (tiles/tile_merge.h)
+//   `sacfuse merge CONFIG`         MergeJob: merges once every tile with views is done (tiles/tile_merge.h), then
+//                                  assembles the DSM (jobs/dsm_product.h)
 // and `sacfuse run` (jobs/tiled_run.h) honours the same claims, so all of them can be mixed.
 #include <string>
 #include <vector>
 
 #include "config/job_config.h"
+#include "jobs/dsm_product.h"
 #include "tiles/tile_merge.h"
 #include "tiles/tile_plan.h"
 #include "tiles/tile_worker.h"
@@ -27,6 +29,7 @@ struct MergeJobOutcome {
   std::vector<std::string> missing;  // not empty: nothing was merged
   std::string fused_las_path;
   MergeResult merged;
+  DsmOutcome dsm;  // output.dsm: the DSM assembled from the tiles (jobs/dsm_product.h)
 };
 
 // `sacfuse merge`: ConfigError unless the config is a tiled run.

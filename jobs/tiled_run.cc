@@ -1,6 +1,7 @@
 #include "jobs/tiled_run.h"
 
 #include <chrono>
+#include <optional>
 
 #include <spdlog/spdlog.h>
 
@@ -51,8 +52,11 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   if (needs.consistency_graphs) {
     throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
   }
-  const TileJob job{config, input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
-                    identities, /*caches_ready=*/true};
+  TileJob job{config, input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
+              identities, /*caches_ready=*/true, {}};
+  const std::optional<DsmGrid> dsm = DsmGridOf(config, input, plan.grid.area());
+  std::optional<DsmTileProduct> dsm_product;
+  if (dsm) job.products.push_back(&dsm_product.emplace(*dsm));
 
   TiledRunOutcome out;
   const TileWorkList work = ListTileWork(job, rerun_ids);
@@ -79,6 +83,11 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   out.merged = true;
   out.merged_points = merged.points;
   out.points_per_view = merged.points_per_view;
+  if (dsm) {
+    out.dsm = AssembleTiledDsm(config, plan, *dsm);
+  } else {
+    RemoveDsmFiles(config);
+  }
   return out;
 }
 

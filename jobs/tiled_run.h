@@ -8,7 +8,7 @@
 //      the tile worker (tiles/tile_worker.h) with this job's fusion step (jobs/tile_fusion.h MethodTileFuser); a
 //      tile that throws gets a failed marker and the others go on;
 //   4. when every tile with views is done, the tile files merged in grid order into DIR/fused.las
-//      (tiles/tile_merge.h).
+//      (tiles/tile_merge.h), and the tiles' DSM windows assembled into DIR/dsm.tif (jobs/dsm_product.h).
 // The caller deleted leftover temporary files first (jobs/run_state.h).
 #include <cstdint>
 #include <string>
@@ -20,6 +20,7 @@
 #include "io/depth_block.h"
 #include "io/las_writer.h"
 #include "io/view_identity.h"
+#include "jobs/dsm_product.h"
 #include "tiles/tile_plan.h"
 #include "tiles/tile_scheduler.h"
 
@@ -41,6 +42,7 @@ struct TiledRunOutcome {
   std::vector<uint64_t> points_per_view;  // of the merged cloud, by view index
   double tiles_seconds = 0.0;             // wall time of the tile stage (all workers)
   double merge_seconds = 0.0;
+  DsmOutcome dsm;                         // the DSM assembled after the merge (output.dsm)
 };
 
 // `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done; so is every tile whose

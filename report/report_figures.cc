@@ -3,16 +3,38 @@
 #include <nlohmann/json.hpp>
 
 namespace sacfuse {
+namespace {
+
+nlohmann::json MapJson(const MapFigure& m) {
+  return {{"present", m.present}, {"file", m.file}, {"width_px", m.width_px}, {"height_px", m.height_px},
+          {"x_min", m.x_min}, {"y_max", m.y_max}, {"metres_per_px", m.metres_per_px}, {"cell_m", m.cell_m},
+          {"points_scanned", m.points_scanned}, {"cells_filled", m.cells_filled}, {"cells_total", m.cells_total}};
+}
+
+MapFigure MapFromJson(const nlohmann::json& m) {
+  MapFigure f;
+  f.present = m.at("present").get<bool>();
+  f.file = m.at("file").get<std::string>();
+  f.width_px = m.at("width_px").get<int>();
+  f.height_px = m.at("height_px").get<int>();
+  f.x_min = m.at("x_min").get<double>();
+  f.y_max = m.at("y_max").get<double>();
+  f.metres_per_px = m.at("metres_per_px").get<double>();
+  f.cell_m = m.at("cell_m").get<double>();
+  f.points_scanned = m.at("points_scanned").get<uint64_t>();
+  f.cells_filled = m.at("cells_filled").get<uint64_t>();
+  f.cells_total = m.at("cells_total").get<uint64_t>();
+  return f;
+}
+
+}  // namespace
 
 std::string ReportFiguresToJson(const ReportFigures& f) {
-  const MapFigure& m = f.map;
   const ProfileFigure& p = f.profile;
   const ProfileStrip& s = p.strip;
   nlohmann::json j;
-  j["map"] = {{"present", m.present}, {"file", m.file}, {"width_px", m.width_px}, {"height_px", m.height_px},
-              {"x_min", m.x_min}, {"y_max", m.y_max}, {"metres_per_px", m.metres_per_px}, {"cell_m", m.cell_m},
-              {"points_scanned", m.points_scanned}, {"cells_filled", m.cells_filled},
-              {"cells_total", m.cells_total}};
+  j["map"] = MapJson(f.map);
+  if (f.dsm.present) j["dsm"] = MapJson(f.dsm);
   j["profile"] = {
       {"present", p.present}, {"reason", p.reason}, {"before_file", p.before_file}, {"after_file", p.after_file},
       {"strip", {{"start", {s.start_xy.x(), s.start_xy.y()}}, {"end", {s.end_xy.x(), s.end_xy.y()}},
@@ -36,18 +58,8 @@ std::string ReportFiguresToJson(const ReportFigures& f) {
 ReportFigures ReportFiguresFromJson(const std::string& text) {
   const nlohmann::json j = nlohmann::json::parse(text);
   ReportFigures f;
-  const auto& m = j.at("map");
-  f.map.present = m.at("present").get<bool>();
-  f.map.file = m.at("file").get<std::string>();
-  f.map.width_px = m.at("width_px").get<int>();
-  f.map.height_px = m.at("height_px").get<int>();
-  f.map.x_min = m.at("x_min").get<double>();
-  f.map.y_max = m.at("y_max").get<double>();
-  f.map.metres_per_px = m.at("metres_per_px").get<double>();
-  f.map.cell_m = m.at("cell_m").get<double>();
-  f.map.points_scanned = m.at("points_scanned").get<uint64_t>();
-  f.map.cells_filled = m.at("cells_filled").get<uint64_t>();
-  f.map.cells_total = m.at("cells_total").get<uint64_t>();
+  f.map = MapFromJson(j.at("map"));
+  if (j.contains("dsm")) f.dsm = MapFromJson(j.at("dsm"));
   const auto& p = j.at("profile");
   ProfileFigure& q = f.profile;
   q.present = p.at("present").get<bool>();

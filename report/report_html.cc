@@ -14,6 +14,7 @@ namespace sacfuse {
 namespace {
 
 constexpr double kMapDisplayPx = 760.0;     // map width on the page
+constexpr double kDsmDisplayPx = 360.0;     // the DSM thumbnail's width
 constexpr double kPanelAxisLeft = 52.0;     // px left of a profile panel for the z axis
 constexpr double kPanelAxisBottom = 34.0;   // px below it for the distance axis
 
@@ -121,10 +122,10 @@ double NiceLength(double max_m) {
   return best;
 }
 
-std::string MapSvg(const MapFigure& m, const ProfileFigure& p) {
+std::string MapSvg(const MapFigure& m, const ProfileFigure& p, double display_w = kMapDisplayPx) {
   std::ostringstream s;
   const double w = m.width_px, h = m.height_px;
-  const double display_w = kMapDisplayPx;  // small maps are enlarged (pixelated), large ones reduced
+  // display_w: small maps are enlarged (pixelated), large ones reduced
   s << "<svg width='" << Fixed(display_w, 0) << "' height='"
     << Fixed(display_w * h / w, 0) << "' viewBox='0 0 " << Fixed(w, 0) << " " << Fixed(h, 0) << "'>"
     << "<image href='" << EscapeHtml(m.file) << "' x='0' y='0' width='" << Fixed(w, 0) << "' height='" << Fixed(h, 0)
@@ -216,7 +217,15 @@ std::string MapSection(const ReportData& d, const ReportFigures& f, const std::v
        "speckle means several views still contribute points there. "
     << GroupedInteger(f.map.points_scanned) << " points in " << GroupedInteger(f.map.cells_filled) << " of "
     << GroupedInteger(f.map.cells_total) << " cells. The line A&ndash;B is the cross-section of section 3.</p>\n";
-  s << "<div class='row'><div>" << MapSvg(f.map, f.profile) << "</div>" << Legend(d, colours) << "</div>\n";
+  s << "<div class='row'><div>" << MapSvg(f.map, f.profile) << "</div>" << Legend(d, colours);
+  if (f.dsm.present) {
+    s << "<div><h3>DSM</h3>" << MapSvg(f.dsm, f.profile, kDsmDisplayPx)
+      << "<p class='caption' style='max-width:" << Fixed(kDsmDisplayPx, 0) << "px'>The run's DSM (<code>dsm.tif</code>, "
+         "or <code>dsm.vrt</code> for large blocks), cells of "
+      << Fixed(f.dsm.cell_m, 3) << " m, hill-shaded (light from the north-west) over a height tint; grey: no "
+         "value.</p></div>";
+  }
+  s << "</div>\n";
   return s.str();
 }
 

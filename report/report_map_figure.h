@@ -17,9 +17,18 @@ struct SourceMapStyle {
   Rgb empty = {246, 246, 246};      // cells without points
 };
 
-// Hill-shade factor of each cell: 1 on flat ground, above 1 facing the sun, below facing away, in [0.35, 1.45];
-// 1 for empty cells. Gradients by central differences of the top z (one-sided next to empty cells).
+// Hill-shade factor of each cell of a height raster (`z`: width x height, row 0 north, NaN = empty, cells of
+// cell_m): 1 on flat ground, above 1 facing the sun, below facing away, in [0.35, 1.45]; 1 for empty cells.
+// Gradients by central differences (one-sided next to empty cells).
+std::vector<float> HillShade(const std::vector<float>& z, int width, int height, double cell_m,
+                             const SourceMapStyle& style);
+// The same for the top grid's heights.
 std::vector<float> HillShade(const TopGrid& grid, const SourceMapStyle& style);
+
+// The DSM thumbnail: a height raster (as HillShade's) hill-shaded over a hypsometric tint (green low, sand, white
+// high, stretched over the 2nd..98th percentile of its heights), empty cells in style.empty; one pixel per cell.
+RgbImage RenderDsmHillShade(const std::vector<float>& z, int width, int height, double cell_m,
+                            const SourceMapStyle& style);
 
 // The map: grid.width x grid.height cells, each pixels_per_cell^2 pixels; colour = colours_by_view[source_id - 1]
 // (kUnknownViewColour for IDs beyond it) times the hill-shade factor.

@@ -12,6 +12,7 @@
 #include "config/output_layout.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/gdal_raster.h"
 #include "io/las_reader.h"
 #include "report/report_cross_section.h"
 #include "report/report_data.h"
@@ -59,6 +60,40 @@ MapFigure WriteMap(const TopGrid& grid, const std::vector<Rgb>& colours, uint64_
   m.points_scanned = points;
   m.cells_total = grid.num_cells();
   for (const uint32_t c : grid.count) m.cells_filled += c > 0 ? 1 : 0;
+  return m;
+}
+
+// The DSM's hill-shade thumbnail (dsm.png) from DIR/dsm.tif or DIR/dsm.vrt, read at most map_target_px cells
+// on its longer side (GDAL's overviews); absent when the run wrote no DSM. A DSM that cannot be read adds a warning.
+MapFigure WriteDsmFigure(const JobConfig& config, const ReportOptions& o, const std::string& report_dir,
+                         ReportData* data) {
+  MapFigure m;
+  std::error_code ec;
+  std::string path;
+  for (const std::string& p : {DsmPath(config), DsmVrtPath(config)}) {
+    if (fs::is_regular_file(p, ec)) path = p;
+  }
+  if (path.empty()) return m;
+  try {
+    const RasterFile dsm(path);
+    int cols = 0, rows = 0;
+    const std::vector<float> z = dsm.ReadOverview(o.map_target_px, &cols, &rows);
+    const double cell = dsm.window().cell_m * static_cast<double>(dsm.window().cols) / cols;
+    const RgbImage image = RenderDsmHillShade(z, cols, rows, cell, SourceMapStyle{});
+    m.present = true;
+    m.file = "dsm.png";
+    WritePng((fs::path(report_dir) / m.file).string(), image);
+    m.width_px = image.width;
+    m.height_px = image.height;
+    m.x_min = dsm.window().west();
+    m.y_max = dsm.window().north();
+    m.metres_per_px = cell;
+    m.cell_m = dsm.window().cell_m;
+    m.cells_total = dsm.window().size();
+  } catch (const std::exception& e) {
+    data->warnings.push_back("no DSM picture: " + std::string(e.what()));
+    m = MapFigure{};
+  }
   return m;
 }
 
@@ -192,6 +227,7 @@ ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {
   } else {
     figures.profile.reason = data.cloud.exists ? data.cloud.name + " has no points" : "no " + data.cloud.name;
   }
+  figures.dsm = WriteDsmFigure(config, o, report_dir, &data);
   figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   figures.peak_rss_mib = PeakRssMiB();
   WriteFileAtomically((fs::path(report_dir) / kFiguresJson).string(), ReportFiguresToJson(figures));

@@ -1,6 +1,7 @@
 // End-to-end: per-tile outputs and resume of a tiled run (simulate --preset tiny, 20 m tiles, 5 m halo).
 // (a) an uninterrupted run; (b) three kill -9 at random moments, then a run to completion, gives the same
-// fused.laz (bytes equal except the header's creation date) and leaves no "*.tmp-*" file; (c) --tiles reruns
+// fused.laz (bytes equal except the header's creation date) and the same dsm.tif (every byte; the runs have a CRS,
+// so they write the DSM) and leaves no "*.tmp-*" file; (c) --tiles reruns
 // only the named tile; (d) status lists every tile done, and a tile whose LAS was deleted as pending; (e) a
 // truncated tile LAS is recomputed by the next run; (f) a failing tile is recorded and the others go on.
 #include <chrono>
@@ -54,7 +55,9 @@ class ResumeEndToEndTest : public testing::TinyBlockSuite {
     SimulateBlock();
     std::string out;
     for (const std::string name : {"a", "b"}) {
-      std::ofstream(Config(name)) << "input: {path: " << Block().string() << "}\n"
+      // With a CRS the run writes its DSM too (output.dsm: auto), resumed like the cloud.
+      std::ofstream(Config(name)) << "crs: \"EPSG:25832\"\n"
+                                  << "input: {path: " << Block().string() << "}\n"
                                   << "output: {dir: " << Out(name).string() << "}\n"
                                   << "tiling: {tile_size_m: 20, halo_m: 5}\n";
     }
@@ -62,6 +65,7 @@ class ResumeEndToEndTest : public testing::TinyBlockSuite {
     ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config("a")), &out), 0) << out;
     run_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     reference_ = WithoutLasCreationDate(ReadFileBytes(Out("a") / "fused.laz"));
+    reference_dsm_ = ReadFileBytes(Out("a") / "dsm.tif");
   }
   static fs::path Tiles(const std::string& name) { return Out(name) / "tiles"; }
   // A run that waits on a tile claim forever fails here after 5 minutes with its output (exit 124), not at
@@ -76,9 +80,13 @@ class ResumeEndToEndTest : public testing::TinyBlockSuite {
     EXPECT_GT(reference_.size(), 100000u);
     EXPECT_EQ(fused.size(), reference_.size());
     EXPECT_TRUE(fused == reference_) << name << "/fused.laz differs from the uninterrupted run's";
+    const std::string dsm = ReadFileBytes(Out(name) / "dsm.tif");
+    EXPECT_GT(reference_dsm_.size(), 1000u);
+    EXPECT_TRUE(dsm == reference_dsm_) << name << "/dsm.tif differs from the uninterrupted run's";
   }
 
   static inline std::string reference_;
+  static inline std::string reference_dsm_;
   static inline double run_seconds_ = 0.0;
 };
 
@@ -184,6 +192,25 @@ TEST_F(ResumeEndToEndTest, DeletedTileIsPendingAndTruncatedTileIsRecomputed) {
   ExpectFusedMatchesReference("a");
   ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
   EXPECT_NE(out.find(", 0 failed, 0 pending"), std::string::npos) << out;
+}
+
+// A tile whose DSM window was deleted is not done (its done marker records the window): status lists it as
+// pending and the next run recomputes it alone, giving the same DSM.
+TEST_F(ResumeEndToEndTest, DeletedDsmWindowMakesItsTilePendingAndIsRecomputed) {
+  std::string id;
+  for (const auto& [tile, marker] : DoneMarkers(Tiles("a"))) {
+    if (nlohmann::json::parse(marker).contains("products")) id = tile;
+  }
+  ASSERT_FALSE(id.empty());
+  fs::remove(Tiles("a") / (id + ".dsm.tif"));
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
+  EXPECT_NE(out.find("pending  " + id), std::string::npos) << out;
+  int code = 0;
+  out = Run("a", "", &code);
+  ASSERT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("1 computed"), std::string::npos) << out;
+  ExpectFusedMatchesReference("a");
 }
 
 // (f) A tile that throws (here: a folder squats on its LAS path, so the rename fails) gets a failed marker, the

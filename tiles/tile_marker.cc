@@ -116,6 +116,14 @@ std::string TileDonePath(const std::string& tiles_dir, const std::string& id) {
 std::string TileFailedPath(const std::string& tiles_dir, const std::string& id) {
   return Path(tiles_dir, id + ".failed.json");
 }
+std::string TileProductPath(const std::string& tiles_dir, const std::string& id, const std::string& suffix) {
+  return Path(tiles_dir, id + "." + suffix);
+}
+
+TileProductFile DescribeTileProduct(const std::string& tiles_dir, const std::string& id, const std::string& suffix) {
+  const std::string path = TileProductPath(tiles_dir, id, suffix);
+  return {suffix, fs::file_size(path), HexDigest(Fnv1a64File(path))};
+}
 
 TileDoneMarker DescribeTileLas(const std::string& tiles_dir, const std::string& id, bool has_las) {
   TileDoneMarker m;
@@ -149,6 +157,13 @@ void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& m) 
                             {"peak_rss_mib", m.peak_rss_mib},
                             {"finished_unix_ns", m.finished_unix_ns ? m.finished_unix_ns : now}};
   if (m.inputs) j["inputs"] = InputsJson(*m.inputs);
+  if (!m.products.empty()) {
+    nlohmann::json products = nlohmann::json::array();
+    for (const TileProductFile& p : m.products) {
+      products.push_back({{"suffix", p.suffix}, {"file_size", p.file_size}, {"checksum_fnv1a64", p.checksum}});
+    }
+    j["products"] = products;
+  }
   WriteFileAtomically(TileDonePath(tiles_dir, m.id), j.dump(2) + "\n");
 }
 
@@ -169,6 +184,10 @@ std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, c
     m.peak_rss_mib = j->at("peak_rss_mib").get<double>();
     m.finished_unix_ns = j->at("finished_unix_ns").get<int64_t>();
     if (j->contains("inputs")) m.inputs = InputsFromJson(j->at("inputs"));
+    for (const auto& p : j->value("products", nlohmann::json::array())) {
+      m.products.push_back({p.at("suffix").get<std::string>(), p.at("file_size").get<uint64_t>(),
+                            p.at("checksum_fnv1a64").get<std::string>()});
+    }
     if (j->contains("points_per_view")) {
       m.points_per_view = j->at("points_per_view").get<std::vector<std::pair<uint32_t, uint64_t>>>();
     }
@@ -201,9 +220,21 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
     return fail("its done marker's points per view add up to " + std::to_string(per_view_sum) + ", not " +
                 std::to_string(m->points) + (m->points_per_view.empty() ? " (written by an older sacfuse)" : ""));
   }
+  std::error_code ec;
+  for (const TileProductFile& p : m->products) {
+    const std::string path = TileProductPath(tiles_dir, id, p.suffix);
+    const std::string file = fs::path(path).filename().string();
+    const auto size = fs::file_size(path, ec);
+    if (ec) return fail(file + " missing");
+    if (size != p.file_size) return fail(file + " size " + std::to_string(size) + " != " + std::to_string(p.file_size));
+    try {
+      if (full_checksum && HexDigest(Fnv1a64File(path)) != p.checksum) return fail(file + " checksum mismatch");
+    } catch (const Error& e) {
+      return fail(e.what());
+    }
+  }
   const std::string las = TileLasPath(tiles_dir, id);
   const std::string name = fs::path(las).filename().string();
-  std::error_code ec;
   if (m->points == 0) {
     if (fs::exists(las, ec)) return fail("marker says empty but " + name + " exists");
     return {true, "", {}};
@@ -235,12 +266,14 @@ std::optional<std::string> ReadTileFailedReason(const std::string& tiles_dir, co
   return j->value("reason", std::string("(no reason recorded)"));
 }
 
-void ClearTileState(const std::string& tiles_dir, const std::string& id) {
+void ClearTileState(const std::string& tiles_dir, const std::string& id,
+                    const std::vector<std::string>& product_suffixes) {
   std::error_code ec;
   // The marker goes first: a kill between the removals leaves no marker pointing at a missing file.
   fs::remove(TileDonePath(tiles_dir, id), ec);
   fs::remove(TileFailedPath(tiles_dir, id), ec);
   fs::remove(TileLasPath(tiles_dir, id), ec);
+  for (const std::string& suffix : product_suffixes) fs::remove(TileProductPath(tiles_dir, id, suffix), ec);
   fs::remove(Path(tiles_dir, id + ".las"), ec);  // written by versions before the tiles were LAZ
 }
 

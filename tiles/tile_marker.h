@@ -3,12 +3,14 @@
 //   <id>.laz        the tile's core points, LAZ (absent for a tile whose core got no points). Compressed: at
 //                   Dortmund scale the tile files were a third of a run's disk (issue 13). Tiles of versions that
 //                   wrote <id>.las are not done for this one (recomputed; ClearTileState removes the old file).
-//   <id>.done.json  written atomically AFTER <id>.laz is renamed into place: count, size, bounds, checksum
+//   <id>.<suffix>   the tile's product files (tiles/tile_product.h: e.g. <id>.dsm.tif, its window of the DSM)
+//   <id>.done.json  written atomically AFTER <id>.laz and its product files are renamed into place: count, size,
+//                   bounds, checksum, and each product file's size and checksum
 //   <id>.failed.json  why the tile's last attempt threw
 // A tile is done only when its marker parses, names the current result-settings hash, its inputs (below) are the
 // current ones, its points per view add up to its count (the merge takes them from here, it does not decode the
 // tile), and its LAS file exists with the recorded size, a readable header with the recorded count, and
-// the recorded FNV-1a 64 checksum.
+// the recorded FNV-1a 64 checksum, and every product file it records exists with the recorded size and checksum.
 // The marker records the tile's inputs: its core and halo and, for every view whose window it reads, the window
 // and the view's identity (io/view_identity.h: depth map, image, camera). A tile is recomputed exactly when one
 // of those differs from the current plan and inputs.
@@ -42,6 +44,13 @@ struct TileInputs {
 TileInputs TileInputsOf(const PlannedTile& tile, const std::vector<View>& views,
                         const std::vector<ViewIdentity>& identities);
 
+// A product file of a tile (tiles/tile_product.h), as its done marker records it.
+struct TileProductFile {
+  std::string suffix;       // DIR/tiles/<id>.<suffix>
+  uint64_t file_size = 0;
+  std::string checksum;     // FNV-1a 64, hex
+};
+
 struct TileDoneMarker {
   std::string id;
   std::string config_hash;  // ResultSettingsHash of the run that wrote it
@@ -56,6 +65,7 @@ struct TileDoneMarker {
   double peak_rss_mib = 0.0;                               // process peak RSS when the tile finished
   int64_t finished_unix_ns = 0;                            // wall clock when the marker was written
   std::optional<TileInputs> inputs;                        // absent in markers of older versions
+  std::vector<TileProductFile> products;                   // the tile's product files (none: no products)
 };
 
 struct TileCheck {
@@ -70,6 +80,10 @@ struct TileCheck {
 std::string TileLasPath(const std::string& tiles_dir, const std::string& id);
 std::string TileDonePath(const std::string& tiles_dir, const std::string& id);
 std::string TileFailedPath(const std::string& tiles_dir, const std::string& id);
+// DIR/tiles/<id>.<suffix>: a product file of the tile.
+std::string TileProductPath(const std::string& tiles_dir, const std::string& id, const std::string& suffix);
+// The record of a written product file (size and checksum).
+TileProductFile DescribeTileProduct(const std::string& tiles_dir, const std::string& id, const std::string& suffix);
 
 // Fills size, count, bounds and checksum from a finished tile LAS (points > 0), or the empty-tile fields.
 TileDoneMarker DescribeTileLas(const std::string& tiles_dir, const std::string& id, bool has_las);
@@ -84,8 +98,10 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
 
 void WriteTileFailedMarker(const std::string& tiles_dir, const std::string& id, const std::string& reason);
 std::optional<std::string> ReadTileFailedReason(const std::string& tiles_dir, const std::string& id);
-// Removes a tile's done/failed markers and point file (before it is recomputed), and an <id>.las of an older version.
-void ClearTileState(const std::string& tiles_dir, const std::string& id);
+// Removes a tile's done/failed markers, point file and the product files named by `product_suffixes` (before it is
+// recomputed), and an <id>.las of an older version.
+void ClearTileState(const std::string& tiles_dir, const std::string& id,
+                    const std::vector<std::string>& product_suffixes = {});
 
 
 }  // namespace sacfuse

@@ -16,7 +16,7 @@ namespace sacfuse {
 
 TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const TileInputs& inputs, TileFuser& fuser) {
   spdlog::info("computing tile {} (pid {})", tile.id, static_cast<long>(::getpid()));
-  ClearTileState(job.tiles_dir, tile.id);
+  ClearTileState(job.tiles_dir, tile.id, ProductSuffixes(job));
   const auto start = std::chrono::steady_clock::now();
   TileFused fused;
   bool has_las = false;
@@ -29,6 +29,12 @@ TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const Ti
     }
   }
   TileDoneMarker marker = DescribeTileLas(job.tiles_dir, tile.id, has_las);
+  for (const TileProduct* product : job.products) {
+    for (const std::string& suffix : product->Make(tile, has_las ? TileLasPath(job.tiles_dir, tile.id) : "",
+                                                   job.tiles_dir)) {
+      marker.products.push_back(DescribeTileProduct(job.tiles_dir, tile.id, suffix));
+    }
+  }
   marker.config_hash = job.hash;
   marker.views = tile.views.size();
   for (uint32_t v = 0; v < fused.points_per_view.size(); ++v) {
@@ -39,6 +45,14 @@ TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const Ti
   marker.peak_rss_mib = PeakRssMiB();
   WriteTileDoneMarker(job.tiles_dir, marker);
   return fused;
+}
+
+std::vector<std::string> ProductSuffixes(const TileJob& job) {
+  std::vector<std::string> suffixes;
+  for (const TileProduct* product : job.products) {
+    for (const std::string& s : product->suffixes()) suffixes.push_back(s);
+  }
+  return suffixes;
 }
 
 void CheckTileFitsBudget(const PlannedTile& tile, uint64_t bytes, const JobConfig& config) {

@@ -15,6 +15,7 @@
 #include "tiles/tile_fuser.h"
 #include "tiles/tile_marker.h"
 #include "tiles/tile_plan.h"
+#include "tiles/tile_product.h"
 
 namespace sacfuse {
 
@@ -28,7 +29,12 @@ struct TileJob {
   std::string hash;       // ResultSettingsHash(config)
   const std::vector<ViewIdentity>& identities;  // of every view (io/view_identity.h), by view index
   bool caches_ready = false;  // every view's superpixel and colour caches were made before the tiles (run)
+  // Files each tile makes beside its points, covered by its done marker (tiles/tile_product.h); not owned.
+  std::vector<const TileProduct*> products;
 };
+
+// The file suffixes of a job's products.
+std::vector<std::string> ProductSuffixes(const TileJob& job);
 
 enum class TileWork {
   kAlreadyDone,    // its done marker verifies: nothing to do
@@ -51,7 +57,8 @@ struct TileWorkOutcome {
 TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool forced, MemoryAdmission* admission,
                            TileFuser& fuser);
 
-// Computes one tile (the caller holds its claim) into <id>.las and <id>.done.json, after clearing its old state;
+// Computes one tile (the caller holds its claim) into <id>.laz, its product files and <id>.done.json, after
+// clearing its old state;
 // logs "computing tile <id>". Throws whatever the tile throws. `inputs` (TileInputsOf the tile) go into the done
 // marker.
 TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const TileInputs& inputs, TileFuser& fuser);

@@ -28,11 +28,14 @@ PKGS=(
   nlohmann-json3-dev       # metadata, reports
   libnanoflann-dev         # kd-trees (eval, correspondences)
   libtiff-dev              # depth rasters
+  libgdal-dev              # raster products: the DSM as a Cloud Optimized GeoTIFF, VRT mosaics (io/gdal_raster)
   libgtest-dev libgmock-dev # tests; CMake's configure looks for GoogleTest (SACFUSE_TESTS=ON), so --build has them
 )
 TEST_PKGS=(
   parallel                 # GNU parallel: running `sacfuse tile` workers (tests/queue_e2e_test.cc)
   chromium                 # tests only: headless screenshot of the HTML run report (tests/report_e2e_test.cc)
+  python3-gdal             # tests only: GDAL's COG validator and an independent reader of the DSM (tests/dsm_e2e_test.cc);
+                           # also ../shared/aerial-bench/score_dsm.py (sacfuse bench --aerial-bench)
 )
 if [ "$MODE" != build ]; then PKGS+=("${TEST_PKGS[@]}"); fi
 missing=()

@@ -16,11 +16,14 @@ std::string RowLine(const AerialRow& r, const std::vector<AerialRow>& rows) {
   std::string name = r.is_sac() ? "**sacfuse**" : AerialMethodLabel(r.method);
   if (r.result.reused) name += " ↺";
   std::string line = "| " + r.block + " | " + name + " | ";
-  if (!r.result.ok()) return line + "failed | | | | | | |\n";
+  if (!r.result.ok()) return line + "failed | | | | | | | | | | |\n";
   const AerialScore& s = r.score;
-  return line + FormatFixed(s.f1_2gsd, 4) + " | " + FormatFixed(s.f1_5gsd, 4) + " | " +
-         FormatFixed(s.density_per_m2, 1) + " | " + FormatFixed(RatioToTsdf(r, rows), 2) + " | " +
-         FormatFixed(100.0 * s.above_top, 2) + " | " + FormatFixed(r.result.metrics.wall_s, 1) + " | " +
+  const auto dsm = [](const AerialDsmScore& d) {
+    return d.ok() ? FormatFixed(d.nmad_m, 3) + " | " + FormatFixed(100.0 * d.completeness, 2) : std::string(" | ");
+  };
+  return line + FormatFixed(s.f1_2gsd, 4) + " | " + FormatFixed(s.f1_5gsd, 4) + " | " + dsm(r.dsm) + " | " +
+         dsm(r.dsm_p90) + " | " + FormatFixed(s.density_per_m2, 1) + " | " + FormatFixed(RatioToTsdf(r, rows), 2) +
+         " | " + FormatFixed(100.0 * s.above_top, 2) + " | " + FormatFixed(r.result.metrics.wall_s, 1) + " | " +
          FormatFixed(r.result.metrics.peak_rss_mib, 0) + " |\n";
 }
 
@@ -35,7 +38,13 @@ std::string SummaryLine(const AerialSummary& s) {
            AerialMethodLabel(s.best_peer) + " " + FormatFixed(s.best_peer_f1_2gsd, 4) + ", oracle " +
            FormatFixed(s.oracle_f1_2gsd, 4) + ", SAC " + FormatFixed(s.sac_f1_2gsd, 4) + ")";
   }
-  return out + ".\n";
+  out += ".";
+  if (std::isfinite(s.sac_dsm_nmad_m) && std::isfinite(s.peers_best_dsm_nmad_m)) {
+    out += " DSM: NMAD " + FormatFixed(s.sac_dsm_nmad_m, 3) + " m (best peer " + FormatFixed(s.peers_best_dsm_nmad_m, 3) +
+           "), completeness " + FormatFixed(100.0 * s.sac_dsm_completeness, 2) + " % (best peer " +
+           FormatFixed(100.0 * s.peers_best_dsm_completeness, 2) + "): " + (s.dsm_ahead ? "ahead on both" : "NOT ahead on both") + ".";
+  }
+  return out + "\n";
 }
 
 }  // namespace
@@ -44,8 +53,9 @@ std::string FormatAerialMarkdown(const std::vector<AerialRow>& rows, const std::
   if (rows.empty()) return "";
   std::ostringstream md;
   md << "\n## aerial-bench (independent simulator, peers and scorer: ../shared/aerial-bench)\n\n"
-     << "| block | method | F1 2×GSD | F1 5×GSD | points in mask /m² | × TSDF's points | above top % | wall s | "
-        "peak RSS MiB |\n|---|---|---|---|---|---|---|---|---|\n";
+     << "| block | method | F1 2×GSD | F1 5×GSD | DSM NMAD m | DSM compl. % | p90 NMAD m | p90 compl. % | points in "
+        "mask /m² | × TSDF's points | above top % | wall s | peak RSS MiB |\n"
+        "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const AerialRow& r : rows) md << RowLine(r, rows);
   md << "\n";
   for (const AerialSummary& s : summaries) md << SummaryLine(s);
@@ -53,7 +63,10 @@ std::string FormatAerialMarkdown(const std::vector<AerialRow>& rows, const std::
         "share of the points in the mask in free space above the top surface (`diagnostics_v2.above_top`). Rank: "
         "among the successful rows but the oracle. Half-way: (F1_SAC − F1_best peer) / (F1_oracle − F1_best peer) "
         "≥ 0.5 at 2×GSD. Wall s and peak RSS: `sacfuse run` as a child process (wait4); peers: peers.py's "
-        "measurement.\n";
+        "measurement. DSM: score_dsm.py over the mask (NMAD of DSM − LiDAR top surface, completeness = share of "
+        "mask cells with a value) of the DSM by sacfuse's rule (sacfuse: its dsm.tif; COLMAP best and Open3D TSDF: "
+        "`sacfuse dsm` of their cloud on the same cells); p90: the cloud gridded by score_dsm.py's own rule (p90 "
+        "of z per mask cell, no hole filling).\n";
   return md.str();
 }
 
@@ -69,6 +82,8 @@ json AerialRowsToJson(const std::vector<AerialRow>& rows) {
     row["block"] = r.block;
     row["method"] = r.method;
     row["aerial"] = AerialScoreToJson(r.score);
+    row["aerial_dsm"] = AerialDsmScoreToJson(r.dsm);
+    row["aerial_dsm_p90"] = AerialDsmScoreToJson(r.dsm_p90);
     row["ratio_to_tsdf_points"] = Number(RatioToTsdf(r, rows));
     out.push_back(row);
   }
@@ -82,7 +97,11 @@ json AerialSummariesToJson(const std::vector<AerialSummary>& summaries) {
                    {"sac_rank_5gsd", s.sac_rank_5gsd}, {"sac_f1_2gsd", Number(s.sac_f1_2gsd)},
                    {"best_peer", s.best_peer}, {"best_peer_f1_2gsd", Number(s.best_peer_f1_2gsd)},
                    {"oracle_f1_2gsd", Number(s.oracle_f1_2gsd)}, {"gap_closed", Number(s.gap_closed)},
-                   {"half_way", s.half_way}});
+                   {"half_way", s.half_way}, {"sac_dsm_nmad_m", Number(s.sac_dsm_nmad_m)},
+                   {"sac_dsm_completeness", Number(s.sac_dsm_completeness)},
+                   {"peers_best_dsm_nmad_m", Number(s.peers_best_dsm_nmad_m)},
+                   {"peers_best_dsm_completeness", Number(s.peers_best_dsm_completeness)},
+                   {"dsm_ahead", s.dsm_ahead}});
   }
   return out;
 }

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/gdal_raster.h"
 #include "io/las_copy.h"
 #include "tools/bench/quality_bench_format.h"
 #include "tools/bench/quality_bench_row.h"
@@ -21,6 +22,13 @@ using nlohmann::json;
 // COLMAP's grid in peers.py's colmap_best (its best setting on these blocks).
 const std::vector<std::string> kColmapGrid = {"--grid", "max_normal_error=180", "--grid", "min_num_pixels=2,5",
                                               "--grid", "max_reproj_error=1,2"};
+
+std::string FormatNumber(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
 
 std::string Script(const AerialContext& c, const char* name) { return (fs::path(c.bench_dir) / name).string(); }
 
@@ -61,9 +69,20 @@ std::string EnsureBlock(const AerialBlockSpec& b, const AerialContext& c, const 
   return "";
 }
 
+// The blocks have no `crs` key: the DSM is asked for (output.dsm: on) at its automatic cell.
 std::string SacfuseConfig(const fs::path& block_dir, const fs::path& out_dir) {
   return "input: {format: colmap, path: " + json(block_dir.string()).dump() + "}\noutput: {dir: " +
-         json(out_dir.string()).dump() + ", format: las}\n";
+         json(out_dir.string()).dump() + ", format: las, dsm: \"on\"}\n";
+}
+
+// score_dsm.py of a DSM raster or a cloud (extra: e.g. --offset X Y Z); the log is `log`.
+AerialDsmScore ScoreDsm(const AerialContext& c, const fs::path& block_dir, const std::string& result,
+                        const std::vector<std::string>& extra, const fs::path& log) {
+  std::vector<std::string> argv = {c.python, Script(c, "score_dsm.py"), result, "--block", block_dir.string(),
+                                   "--json-only"};
+  argv.insert(argv.end(), extra.begin(), extra.end());
+  RunRowStep(argv, log.string());
+  return ParseScoreDsmOutput(ReadText(log), log.string());
 }
 
 void RunAndScore(const AerialContext& c, const fs::path& block_dir, const fs::path& dir, const std::string& config,
@@ -81,20 +100,25 @@ void RunAndScore(const AerialContext& c, const fs::path& block_dir, const fs::pa
                                    log.string());
   row->result.eval_s = s.wall_s;
   row->score = ParseScoreOutput(ReadText(log), log.string());
+  row->dsm = ScoreDsm(c, block_dir, (dir / "out" / "dsm.tif").string(), {}, dir / "score_dsm.log");
+  row->dsm_p90 = ScoreDsm(c, block_dir, (dir / "out" / "fused.las").string(), {}, dir / "score_dsm_p90.log");
   row->result.status = "ok";
 }
 
 AerialRow SacfuseRow(const AerialBlockSpec& b, const AerialContext& c, const fs::path& block_dir) {
-  AerialRow row{b.name, "sacfuse", {}, {}};
+  AerialRow row{b.name, "sacfuse", {}, {}, {}, {}};
   const fs::path dir = fs::path(c.root) / "rows" / b.name / "sacfuse";
   const fs::path row_json = dir / "row.json";
   const std::string config = SacfuseConfig(block_dir, dir / "out");
-  row.result.key = config + "# command: run + score.py --json-only\n# block: make_block.py " + JoinWords(b.make_args);
+  row.result.key = config + "# command: run + score.py --json-only + score_dsm.py\n# block: make_block.py " +
+                   JoinWords(b.make_args);
   try {
     if (const auto old = ReusableRowJson(row_json.string(), row.result.key, c.force)) {
       row.result = RowResultFromJson(*old);
       row.result.reused = true;
       row.score = AerialScoreFromJson(old->value("aerial", json::object()), row_json.string());
+      row.dsm = AerialDsmScoreFromJson(old->value("aerial_dsm", json::object()), row_json.string());
+      row.dsm_p90 = AerialDsmScoreFromJson(old->value("aerial_dsm_p90", json::object()), row_json.string());
       return row;
     }
     RunAndScore(c, block_dir, dir, config, &row);
@@ -107,6 +131,8 @@ AerialRow SacfuseRow(const AerialBlockSpec& b, const AerialContext& c, const fs:
   if (!c.keep_clouds) DropClouds(dir.string());
   json j = RowResultToJson(row.result);
   j["aerial"] = AerialScoreToJson(row.score);
+  j["aerial_dsm"] = AerialDsmScoreToJson(row.dsm);
+  j["aerial_dsm_p90"] = AerialDsmScoreToJson(row.dsm_p90);
   RecordRowJson(row_json.string(), j, &row.result);
   return row;
 }
@@ -145,6 +171,34 @@ std::vector<std::string> EnsurePeers(const AerialBlockSpec& b, const AerialConte
   return missing;
 }
 
+// The DSM scores of a peer's cloud (BLOCK/peers/<method>.ply, in the block's local frame: shifted by meta.json's
+// origin): `sacfuse dsm` on the cells of sacfuse's own DSM (its cell and extent), scored by score_dsm.py, and the
+// cloud gridded by score_dsm.py's own rule. Nothing (the row keeps no DSM scores) without sacfuse's DSM or the cloud.
+void ScorePeerDsm(const AerialContext& c, const fs::path& block_dir, const std::string& block, AerialRow* row) {
+  const fs::path cloud = block_dir / "peers" / (row->method + ".ply");
+  const fs::path sac_row = fs::path(c.root) / "rows" / block / "sacfuse";
+  std::error_code ec;
+  // The run's DSM: beside row.json once the clouds are dropped (DropClouds), else in out/.
+  const fs::path sac_dsm = fs::is_regular_file(sac_row / "dsm.tif", ec) ? sac_row / "dsm.tif" : sac_row / "out" / "dsm.tif";
+  if (!fs::is_regular_file(cloud, ec) || !fs::is_regular_file(sac_dsm, ec)) return;
+  const json origin = ReadJsonFile((block_dir / "meta.json").string()).at("origin");
+  std::vector<std::string> offset;
+  for (const json& v : origin) offset.push_back(FormatNumber(v.get<double>()));
+  const CellWindow w = RasterFile(sac_dsm.string()).window();
+  const fs::path dir = fs::path(c.root) / "rows" / block / row->method;
+  fs::create_directories(dir);
+  const auto centre = [](double edge, double half) { return FormatNumber(edge + half); };
+  const double h = 0.5 * w.cell_m;
+  RunRowStep({c.sacfuse, "dsm", cloud.string(), "--offset", offset[0] + "," + offset[1] + "," + offset[2], "--cell",
+              FormatNumber(w.cell_m), "--extent",
+              centre(w.west(), h) + "," + centre(w.south(), h) + "," + centre(w.east(), -h) + "," + centre(w.north(), -h),
+              "--out", (dir / "dsm.tif").string()},
+             (dir / "dsm.log").string());
+  row->dsm = ScoreDsm(c, block_dir, (dir / "dsm.tif").string(), {}, dir / "score_dsm.log");
+  row->dsm_p90 = ScoreDsm(c, block_dir, cloud.string(), {"--offset", offset[0], offset[1], offset[2]},
+                          dir / "score_dsm_p90.log");
+}
+
 std::vector<AerialRow> PeerRows(const AerialBlockSpec& b, const AerialContext& c, const fs::path& block_dir,
                                 std::ostream& out) {
   std::vector<std::string> ran;
@@ -162,7 +216,7 @@ std::vector<AerialRow> PeerRows(const AerialBlockSpec& b, const AerialContext& c
     // COLMAP rows off (--colmap off, or colmap not installed): COLMAP's row is still shown when the block's
     // peers.json has it, so that "best peer" and half-way are judged against every peer measured.
     if (m == "colmap_best" && !c.colmap && (it == peers.end() || !it->second.ok)) continue;
-    AerialRow row{b.name, m, {}, {}};
+    AerialRow row{b.name, m, {}, {}, {}, {}};
     if (it == peers.end()) {
       row.result.error = error.empty() ? "peers.py wrote no " + m + " row in " + (block_dir / "peers.json").string()
                                        : error;
@@ -176,6 +230,13 @@ std::vector<AerialRow> PeerRows(const AerialBlockSpec& b, const AerialContext& c
       row.result.metrics.peak_rss_mib = it->second.peak_rss_mib;
       row.result.metrics.f1_2gsd_pct = 100.0 * row.score.f1_2gsd;
       row.result.metrics.f1_5gsd_pct = 100.0 * row.score.f1_5gsd;
+      if (m == "colmap_best" || m == "tsdf") {
+        try {
+          ScorePeerDsm(c, block_dir, b.name, &row);
+        } catch (const std::exception& e) {
+          out << "[aerial] " << b.name << " | " << AerialMethodLabel(m) << ": DSM not scored: " << e.what() << "\n";
+        }
+      }
     }
     rows.push_back(row);
   }
@@ -189,6 +250,9 @@ void PrintRow(const AerialRow& r, std::ostream& out) {
     return;
   }
   out << "F1 " << FormatFixed(r.score.f1_2gsd, 4) << " / " << FormatFixed(r.score.f1_5gsd, 4) << ", "
+      << (r.dsm.ok() ? "DSM NMAD " + FormatFixed(r.dsm.nmad_m, 3) + " m, completeness " +
+                           FormatFixed(100.0 * r.dsm.completeness, 2) + " %, "
+                     : std::string())
       << FormatFixed(r.score.density_per_m2, 1) << " points/m2, " << FormatFixed(r.result.metrics.wall_s, 1) << " s"
       << (r.result.reused ? " (reused)" : "") << std::endl;
 }
@@ -218,7 +282,7 @@ std::vector<AerialRow> RunAerialBlock(const AerialBlockSpec& b, const AerialCont
   std::vector<std::string> methods = AerialPeerMethods(c.colmap);
   methods.insert(methods.begin(), "sacfuse");
   for (const std::string& m : methods) {
-    AerialRow row{b.name, m, {}, {}};
+    AerialRow row{b.name, m, {}, {}, {}, {}};
     row.result.error = "aerial-bench block " + b.name + " could not be made: " + block_error;
     PrintRow(row, out);
     rows.push_back(row);

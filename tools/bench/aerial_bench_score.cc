@@ -72,6 +72,40 @@ AerialScore ParseScoreOutput(const std::string& text, const std::string& source)
   throw InputError(source, "no JSON line from score.py");
 }
 
+AerialDsmScore AerialDsmScoreFromJson(const json& j, const std::string& source) {
+  if (!j.is_object()) throw InputError(source, "the DSM score is not a JSON object");
+  const json& all = j.contains("all") ? j["all"] : j;
+  if (!all.is_object()) throw InputError(source, "the DSM score has no \"all\" object");
+  AerialDsmScore s;
+  s.completeness = NumberOr(all, "completeness", kNoValue);
+  s.median_m = NumberOr(all, "median_m", kNoValue);
+  s.nmad_m = NumberOr(all, "nmad_m", kNoValue);
+  s.rmse_m = NumberOr(all, "rmse_m", kNoValue);
+  if (j.contains("all") && !std::isfinite(s.completeness)) throw InputError(source, "no DSM completeness");
+  return s;
+}
+
+json AerialDsmScoreToJson(const AerialDsmScore& s) {
+  return {{"completeness", Number(s.completeness)},
+          {"median_m", Number(s.median_m)},
+          {"nmad_m", Number(s.nmad_m)},
+          {"rmse_m", Number(s.rmse_m)}};
+}
+
+AerialDsmScore ParseScoreDsmOutput(const std::string& text, const std::string& source) {
+  std::istringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] != '{') continue;
+    try {
+      return AerialDsmScoreFromJson(json::parse(line), source);
+    } catch (const json::exception& e) {
+      throw InputError(source, std::string("score_dsm.py's JSON line is not valid JSON: ") + e.what());
+    }
+  }
+  throw InputError(source, "no JSON line from score_dsm.py");
+}
+
 std::map<std::string, AerialPeer> ParsePeersJson(const json& j, const std::string& source) {
   std::map<std::string, AerialPeer> peers;
   if (!j.is_object() || !j.contains("peers") || !j["peers"].is_array()) {

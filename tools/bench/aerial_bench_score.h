@@ -1,6 +1,7 @@
 #pragma once
 // `sacfuse bench`, aerial-bench part 2: reading its results. score.py --json-only prints one JSON line (protocol
 // v2: `scores[i]` with `tau` and `f1`, `gsd`, `points_in_mask`, `density_per_m2`, `diagnostics_v2.above_top`);
+// score_dsm.py prints one too (`all`: `completeness`, `median_m`, `nmad_m`, `rmse_m`);
 // peers.py keeps its rows in BLOCK/peers.json (`peers[i]`: `method`, `returncode`, `wall_s`, `peak_rss_mb`,
 // `score` as score.py's).
 #include <map>
@@ -26,6 +27,20 @@ nlohmann::json AerialScoreToJson(const AerialScore& score);  // NaN as null; Aer
 
 // The first line of `text` that starts with '{' (score.py's JSON line; warnings may precede it), parsed.
 AerialScore ParseScoreOutput(const std::string& text, const std::string& source);
+
+// score_dsm.py's DSM accuracy over the evaluation mask ("all"): a DSM raster sampled at the mask cells' centres,
+// or a cloud gridded by its own rule (p90 of the z in each mask cell).
+struct AerialDsmScore {
+  double completeness = kNoValue;  // share of mask cells with a value
+  double median_m = kNoValue;      // of e = DSM - LiDAR top surface
+  double nmad_m = kNoValue;
+  double rmse_m = kNoValue;
+  bool ok() const { return completeness == completeness; }
+};
+// score_dsm.py's JSON line (the first line of `text` starting with '{'), or our own form (AerialDsmScoreToJson).
+AerialDsmScore ParseScoreDsmOutput(const std::string& text, const std::string& source);
+AerialDsmScore AerialDsmScoreFromJson(const nlohmann::json& j, const std::string& source);
+nlohmann::json AerialDsmScoreToJson(const AerialDsmScore& score);  // NaN as null
 
 struct AerialPeer {
   bool ok = false;

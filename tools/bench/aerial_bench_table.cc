@@ -30,6 +30,17 @@ AerialSummary SummariseBlock(const std::string& block, const std::vector<AerialR
   }
   s.ranked = static_cast<int>(f1_2.size());
   if (sac == nullptr) return s;
+  s.sac_dsm_nmad_m = sac->dsm.nmad_m;
+  s.sac_dsm_completeness = sac->dsm.completeness;
+  int peers_with_dsm = 0;
+  for (const AerialRow& r : rows) {
+    if (r.block != block || !r.result.ok() || (r.method != "colmap_best" && r.method != "tsdf") || !r.dsm.ok()) continue;
+    ++peers_with_dsm;
+    if (!(s.peers_best_dsm_nmad_m <= r.dsm.nmad_m)) s.peers_best_dsm_nmad_m = r.dsm.nmad_m;
+    if (!(s.peers_best_dsm_completeness >= r.dsm.completeness)) s.peers_best_dsm_completeness = r.dsm.completeness;
+  }
+  s.dsm_ahead = peers_with_dsm > 0 && sac->dsm.ok() && s.sac_dsm_nmad_m < s.peers_best_dsm_nmad_m &&
+                s.sac_dsm_completeness > s.peers_best_dsm_completeness;
   s.sac_f1_2gsd = sac->score.f1_2gsd;
   s.sac_rank_2gsd = RankOf(sac->score.f1_2gsd, f1_2);
   s.sac_rank_5gsd = RankOf(sac->score.f1_5gsd, f1_5);

@@ -20,6 +20,9 @@ struct AerialRow {
   std::string method;      // one of AerialMethods()
   RowResult result;        // status, error, reused, key; metrics.wall_s and metrics.peak_rss_mib
   AerialScore score;
+  // DSM accuracy (score_dsm.py): `dsm` of the DSM by sacfuse's rule (sacfuse: its product DIR/dsm.tif; peers:
+  // `sacfuse dsm` of their cloud on the same cells), `dsm_p90` of the cloud gridded by score_dsm.py's own rule.
+  AerialDsmScore dsm, dsm_p90;
   bool is_sac() const { return method == "sacfuse"; }
   bool is_oracle() const { return method == "oracle"; }
 };
@@ -38,6 +41,11 @@ struct AerialSummary {
   double oracle_f1_2gsd = kNoValue;
   double gap_closed = kNoValue;    // GapClosed(SAC, best peer, oracle) at 2 x GSD
   bool half_way = false;           // gap_closed >= 0.5
+  // The DSM (sacfuse's rule): sacfuse's NMAD and completeness against the best of COLMAP best and Open3D TSDF
+  // (lowest NMAD, highest completeness, each over those two); ahead = lower NMAD and higher completeness than both.
+  double sac_dsm_nmad_m = kNoValue, sac_dsm_completeness = kNoValue;
+  double peers_best_dsm_nmad_m = kNoValue, peers_best_dsm_completeness = kNoValue;
+  bool dsm_ahead = false;
 };
 
 // One summary per block, in order of first appearance.

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <vector>
 
-#include "tools/bench/ply_reader.h"
+#include "io/ply_reader.h"
 
 namespace sacfuse {
 

@@ -15,19 +15,20 @@ using nlohmann::json;
 
 const char* const kColumnsHeader =
     "| method | F1 2×GSD % | F1 5×GSD % | accuracy 2× % | completeness 2× % | mean abs dist m | points | "
-    "redundancy | wall s | peak RSS MiB |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    "redundancy | DSM NMAD m | DSM compl. % | wall s | peak RSS MiB |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
 
 std::string Cells(const RowMetrics& m) {
   return FormatFixed(m.f1_2gsd_pct, 2) + " | " + FormatFixed(m.f1_5gsd_pct, 2) + " | " +
          FormatFixed(m.accuracy_2gsd_pct, 2) + " | " + FormatFixed(m.completeness_2gsd_pct, 2) + " | " +
          FormatFixed(m.mean_abs_distance_m, 3) + " | " + FormatCount(m.points) + " | " + FormatFixed(m.redundancy, 2) +
-         " | " + FormatFixed(m.wall_s, 1) + " | " + FormatFixed(m.peak_rss_mib, 0);
+         " | " + FormatFixed(m.dsm_nmad_m, 3) + " | " + FormatFixed(m.dsm_completeness_pct, 2) + " | " +
+         FormatFixed(m.wall_s, 1) + " | " + FormatFixed(m.peak_rss_mib, 0);
 }
 
 std::string RowLine(const BenchRow& r) {
   std::string name = r.spec.is_sac ? "**" + r.spec.name + "**" : r.spec.name;
   if (r.result.reused) name += " ↺";
-  if (!r.result.ok()) return "| " + name + " | failed | | | | | | | | |\n";
+  if (!r.result.ok()) return "| " + name + " | failed | | | | | | | | | | |\n";
   return "| " + name + " | " + Cells(r.result.metrics) + " |\n";
 }
 
@@ -82,6 +83,9 @@ void AppendNotes(const BenchDocument& d, std::ostringstream& md) {
         "block's GSD. Mean abs dist: mean nearest-reference distance of the observed result points at 2×GSD, m.\n"
      << "- Redundancy = result points inside the eval mask / (mask area / GSD²): points per GSD×GSD cell of the "
         "evaluated area (1.0 = one point per cell; the union of all depth maps is the most redundant).\n"
+     << "- DSM: each sacfuse row writes its DSM (`output.dsm: on`, automatic cell) and `sacfuse eval --dsm` scores "
+        "it against the reference's top surface on the same cells over the eval mask: NMAD of the height error, m, "
+        "and completeness (share of the cells with a value), %. COLMAP rows have no DSM.\n"
      << "- Wall s and peak RSS MiB: the fusion command alone as a child process (wait4): `sacfuse run` (reading "
         "the workspace, fusing, writing fused.las; no scoring) for sacfuse rows, COLMAP's `stereo_fusion` process "
         "for COLMAP rows (the workspace shift, PLY→LAS conversion and scoring are not included). Each sacfuse row "
@@ -155,7 +159,8 @@ std::string FormatBenchMarkdown(const BenchDocument& d) {
     for (const auto& s : a.scenes) md << " " << s;
     md << ")\n\n"
        << "| method | blocks | F1 2×GSD % | F1 5×GSD % | accuracy 2× % | completeness 2× % | mean abs dist m | "
-          "points | redundancy | wall s | peak RSS MiB |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+          "points | redundancy | DSM NMAD m | DSM compl. % | wall s | peak RSS MiB |\n"
+          "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const AverageRow& r : a.rows) {
       md << "| " << r.name << " | " << r.blocks << " | " << Cells(r.mean)
          << " |\n";
@@ -276,7 +281,8 @@ json BenchToJson(const BenchDocument& d) {
       json m = RowResultToJson(tmp);
       json row = {{"name", r.name}, {"blocks", r.blocks}};
       for (const char* k : {"f1_2gsd_pct", "f1_5gsd_pct", "accuracy_2gsd_pct", "completeness_2gsd_pct",
-                            "mean_abs_distance_m", "points", "redundancy", "wall_s", "peak_rss_mib"}) {
+                            "mean_abs_distance_m", "points", "redundancy", "dsm_nmad_m", "dsm_completeness_pct",
+                            "wall_s", "peak_rss_mib"}) {
         row[k] = m[k];
       }
       arows.push_back(row);

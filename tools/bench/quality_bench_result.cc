@@ -55,6 +55,10 @@ RowMetrics MetricsFromEvalJson(const std::string& eval_json, double gsd_m) {
     const double outside = static_cast<double>(j.value("result_points_outside_mask", uint64_t{0}));
     m.redundancy = Redundancy((static_cast<double>(scored) - outside) * static_cast<double>(stride),
                               j.at("area_m2").get<double>(), gsd_m);
+    if (j.contains("dsm")) {
+      m.dsm_nmad_m = j.at("dsm").at("all").at("nmad_m").get<double>();
+      m.dsm_completeness_pct = 100.0 * j.at("dsm").at("all").at("completeness").get<double>();
+    }
   } catch (const json::exception& e) {
     throw InputError(eval_json, std::string("unexpected evaluation JSON: ") + e.what());
   }
@@ -78,6 +82,8 @@ json RowResultToJson(const RowResult& r) {
           {"mean_abs_distance_m", Number(m.mean_abs_distance_m)},
           {"points", m.points},
           {"redundancy", Number(m.redundancy)},
+          {"dsm_nmad_m", Number(m.dsm_nmad_m)},
+          {"dsm_completeness_pct", Number(m.dsm_completeness_pct)},
           {"wall_s", Number(m.wall_s)},
           {"peak_rss_mib", Number(m.peak_rss_mib)},
           {"eval_s", Number(r.eval_s)},
@@ -100,6 +106,8 @@ RowResult RowResultFromJson(const json& j) {
   m.mean_abs_distance_m = NumberOf(j, "mean_abs_distance_m");
   m.points = j.value("points", uint64_t{0});
   m.redundancy = NumberOf(j, "redundancy");
+  m.dsm_nmad_m = NumberOf(j, "dsm_nmad_m");
+  m.dsm_completeness_pct = NumberOf(j, "dsm_completeness_pct");
   m.wall_s = NumberOf(j, "wall_s");
   m.peak_rss_mib = NumberOf(j, "peak_rss_mib");
   r.eval_s = NumberOf(j, "eval_s");

@@ -19,6 +19,8 @@ struct RowMetrics {
   double mean_abs_distance_m = kNoValue;    // of the observed result points at the smallest threshold
   uint64_t points = 0;                      // points of the fused cloud
   double redundancy = kNoValue;             // points in the mask per GSD^2 of mask area (Redundancy())
+  double dsm_nmad_m = kNoValue;             // the run's DSM against the reference (eval.json "dsm"): NMAD, m
+  double dsm_completeness_pct = kNoValue;   // ... and completeness over the mask, %
   double wall_s = kNoValue;                 // the fusion command (child process), seconds
   double peak_rss_mib = kNoValue;           // its peak resident memory, MiB
 };
@@ -40,8 +42,8 @@ struct RowResult {
 // GSD x GSD cell of the evaluated area. NaN when area or GSD is not positive.
 double Redundancy(double points_in_mask, double area_m2, double gsd_m);
 
-// Scores of an eval.json (EvalReportToJson) at 2 and 5 x gsd_m; also mean distance, points in the file and
-// redundancy. Throws InputError (naming the file) when it cannot be read or lacks a threshold.
+// Scores of an eval.json (EvalReportToJson) at 2 and 5 x gsd_m; also mean distance, points in the file,
+// redundancy and, when it scored a DSM, the DSM's NMAD and completeness. Throws InputError (naming the file) when it cannot be read or lacks a threshold.
 RowMetrics MetricsFromEvalJson(const std::string& eval_json, double gsd_m);
 
 // Numbers as JSON; NaN becomes null (and null reads back as NaN).

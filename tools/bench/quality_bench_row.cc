@@ -41,6 +41,7 @@ void ScoreSacfuseRow(const RowSpec& row, const RowContext& c, const BlockEvaluat
   for (const double t : ev.tau_gsd) taus += (taus.empty() ? "" : ",") + FormatNumber(t);
   argv.insert(argv.end(), {"--gsd", FormatNumber(ev.gsd_m), "--tau-gsd", taus, "--json", (dir / "eval.json").string()});
   if (ev.align) argv.push_back("--align");
+  if (fs::exists(dir / "out" / "dsm.tif")) argv.insert(argv.end(), {"--dsm", (dir / "out" / "dsm.tif").string()});
   const ChildResult e = RunRowStep(argv, (dir / "eval.log").string());
   result->eval_s = e.wall_s;
   const RowMetrics wall = result->metrics;
@@ -126,11 +127,10 @@ void DropClouds(const std::string& row_dir) {
   std::error_code ec;
   const fs::path dir(row_dir);
   const fs::path out = dir / "out";
-  if (fs::exists(out / "run_report.json", ec)) fs::copy_file(out / "run_report.json", dir / "run_report.json",
-                                                              fs::copy_options::overwrite_existing, ec);
-  if (fs::exists(out / "colmap_fusion.json", ec)) fs::copy_file(out / "colmap_fusion.json",
-                                                                 dir / "colmap_fusion.json",
-                                                                 fs::copy_options::overwrite_existing, ec);
+  // The small outputs stay beside row.json: the run's numbers and its DSM (the aerial peers are gridded on its cells).
+  for (const char* name : {"run_report.json", "colmap_fusion.json", "dsm.tif"}) {
+    if (fs::exists(out / name, ec)) fs::copy_file(out / name, dir / name, fs::copy_options::overwrite_existing, ec);
+  }
   fs::remove_all(out, ec);
 }
 
@@ -163,6 +163,8 @@ RowResult RunBenchRow(const RowSpec& row, const RowContext& c) {
     request.block_config = block_config.string();
     request.output_dir = (dir / "out").string();
     request.overrides = row.overrides;
+    // sacfuse rows write their DSM (the simulated blocks have no `crs`, so it is asked for), scored by eval --dsm.
+    if (row.kind != RowKind::kColmap) request.overrides.emplace_back("output.dsm", "on");
     request.keep_evaluation = row.kind == RowKind::kColmap;  // colmap-fusion scores itself
     const std::string config = MakeRowConfig(request);
     std::string command = row.kind == RowKind::kColmap ? "colmap-fusion --colmap " + c.colmap : "run + eval";

@@ -43,7 +43,7 @@ std::optional<nlohmann::json> ReusableRowJson(const std::string& path, const std
 // Writes `row` (RowResultToJson(*result) plus any extra fields) atomically to `path`; a row that cannot be recorded
 // becomes failed.
 void RecordRowJson(const std::string& path, const nlohmann::json& row, RowResult* result);
-// Removes ROW/out (the clouds) after keeping its run_report.json and colmap_fusion.json in ROW.
+// Removes ROW/out (the clouds) after keeping its run_report.json, colmap_fusion.json and dsm.tif in ROW.
 void DropClouds(const std::string& row_dir);
 
 // argv joined by spaces (commands in errors, logs and resume keys).

@@ -16,7 +16,8 @@ class MetricMeans {
   void Add(const RowMetrics& m) {
     const double values[kColumns] = {m.f1_2gsd_pct, m.f1_5gsd_pct, m.accuracy_2gsd_pct,
                                      m.completeness_2gsd_pct, m.mean_abs_distance_m, static_cast<double>(m.points),
-                                     m.redundancy, m.wall_s, m.peak_rss_mib};
+                                     m.redundancy, m.wall_s, m.peak_rss_mib, m.dsm_nmad_m,
+                                     m.dsm_completeness_pct};
     for (int i = 0; i < kColumns; ++i) {
       if (std::isfinite(values[i])) {
         sum_[i] += values[i];
@@ -37,11 +38,13 @@ class MetricMeans {
     m.redundancy = v[6];
     m.wall_s = v[7];
     m.peak_rss_mib = v[8];
+    m.dsm_nmad_m = v[9];
+    m.dsm_completeness_pct = v[10];
     return m;
   }
 
  private:
-  static constexpr int kColumns = 9;
+  static constexpr int kColumns = 11;
   double sum_[kColumns] = {};
   int count_[kColumns] = {};
 };

@@ -19,6 +19,7 @@ int Main(int argc, char** argv) {
   AddReportCommand(app, &exit_code);
   AddSimulateCommand(app, &exit_code);
   AddEvalCommand(app, &exit_code);
+  AddDsmCommand(app, &exit_code);
   AddColmapFusionCommand(app, &exit_code);
   AddBenchCommand(app, &exit_code);
   AddConvertCommand(app, &exit_code);

@@ -22,5 +22,6 @@ void AddConvertCommand(CLI::App& app, int* exit_code);
 void AddVersionCommand(CLI::App& app, int* exit_code);
 void AddValidateCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
+void AddDsmCommand(CLI::App& app, int* exit_code);
 
 }  // namespace sacfuse::cli

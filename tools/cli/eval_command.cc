@@ -23,6 +23,9 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--tau", request->tau_m, "Thresholds in metres (override --tau-gsd)")->delimiter(',');
   cmd->add_flag("--align", request->align, "Robust ICP of the result onto the reference before scoring");
   cmd->add_option("--json", request->json_path, "Also write the report as JSON here");
+  cmd->add_option("--dsm", request->dsm,
+                  "Also score this DSM (GeoTIFF or VRT) against the reference's top surface on its cells: "
+                  "completeness, median, NMAD, RMSE, by class");
   cmd->callback([request, exit_code] {
     SetupLogging("info");
     *exit_code = RunGuarded([&] {

@@ -27,6 +27,10 @@ int MergeCommand(const std::string& config_path) {
     return kExitFailure;
   }
   std::cout << "fused cloud: " << out.fused_las_path << " (" << out.merged.points << " points)\n";
+  if (out.dsm.written) {
+    std::cout << "DSM: " << out.dsm.path << " (" << out.dsm.cols << " x " << out.dsm.rows << " cells of "
+              << out.dsm.cell_m << " m)\n";
+  }
   return kExitOk;
 }
 

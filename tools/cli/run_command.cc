@@ -101,6 +101,10 @@ int RunCommand(const RunArgs& args) {
       }
       std::cout << "fused cloud: " << summary.las_path << " (" << summary.output_points << " points, "
                 << summary.views.size() << " views, method " << summary.method << ")\n";
+      if (summary.dsm.written) {
+        std::cout << "DSM: " << summary.dsm.path << " (" << summary.dsm.cols << " x " << summary.dsm.rows
+                  << " cells of " << summary.dsm.cell_m << " m)\n";
+      }
       PrintSourceViewSummary(summary, std::cout);
       std::cout << summary.eval_text;  // the scores (evaluation.reference), computed by the job
     } catch (const ConfigError&) {

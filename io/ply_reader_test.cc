@@ -1,4 +1,4 @@
-#include "tools/bench/ply_reader.h"
+#include "io/ply_reader.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,0 +1,79 @@
+#include "core/cell_heights.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace sacfuse {
+namespace {
+
+// Bits of a float whose unsigned order is the float order (negative values reversed below the positive ones).
+uint32_t OrderedBits(float v) {
+  uint32_t b = 0;
+  std::memcpy(&b, &v, sizeof(b));
+  return (b & 0x80000000u) ? ~b : (b | 0x80000000u);
+}
+
+float FromOrderedBits(uint32_t b) {
+  b = (b & 0x80000000u) ? (b & 0x7fffffffu) : ~b;
+  float v = 0;
+  std::memcpy(&v, &b, sizeof(v));
+  return v;
+}
+
+}  // namespace
+
+CellHeights::CellHeights(const CellWindow& window) : window_(window) {
+  if (window.size() >= (uint64_t{1} << 32)) {
+    throw Error("cell window of " + std::to_string(window.cols) + " x " + std::to_string(window.rows) +
+                " cells is too large to grid at once (at most 2^32 cells)");
+  }
+}
+
+bool CellHeights::CellOf(double x, double y, int64_t* col, int64_t* row) const {
+  if (!std::isfinite(x) || !std::isfinite(y)) return false;
+  *col = CellIndexOf(x, window_.cell_m);
+  *row = CellIndexOf(y, window_.cell_m);
+  return window_.Contains(*col, *row);
+}
+
+void CellHeights::Add(double x, double y, double z) {
+  int64_t col = 0, row = 0;
+  if (!std::isfinite(z) || !CellOf(x, y, &col, &row)) {
+    ++ignored_;
+    return;
+  }
+  AddToCell(col, row, z);
+}
+
+void CellHeights::AddToCell(int64_t col, int64_t row, double z) {
+  if (!std::isfinite(z)) {
+    ++ignored_;
+    return;
+  }
+  keys_.push_back((static_cast<uint64_t>(window_.Index(col, row)) << 32) | OrderedBits(static_cast<float>(z)));
+}
+
+std::vector<float> CellHeights::Reduce(double quantile, int min_points) {
+  std::vector<float> values(window_.size(), kNoCellValue);
+  std::sort(keys_.begin(), keys_.end());
+  const size_t n = keys_.size();
+  for (size_t begin = 0; begin < n;) {
+    const uint64_t cell = keys_[begin] >> 32;
+    size_t end = begin + 1;
+    while (end < n && (keys_[end] >> 32) == cell) ++end;
+    const size_t count = end - begin;
+    if (static_cast<int64_t>(count) >= min_points) {
+      const size_t k = std::min(count - 1, static_cast<size_t>(std::floor(quantile * (count - 1) + 0.5)));
+      values[cell] = FromOrderedBits(static_cast<uint32_t>(keys_[begin + k] & 0xffffffffu));
+    }
+    begin = end;
+  }
+  keys_.clear();
+  keys_.shrink_to_fit();
+  return values;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,39 @@
+#pragma once
+// Heights of the points falling in each cell of a window (core/cell_window.h), reduced to one value per cell:
+// the q-quantile of the cell's z (the element at position min(n - 1, floor(q (n - 1) + 0.5)) of the n sorted z
+// values, as ../shared/aerial-bench/score_dsm.py grids clouds), or no value (NaN) for a cell with fewer than
+// min_points points. q = 1 is the highest point. Memory: 8 bytes per point added, so callers give it the
+// points of one tile or one band of a cloud, never an unbounded stream.
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "core/cell_window.h"
+
+namespace sacfuse {
+
+constexpr float kNoCellValue = std::numeric_limits<float>::quiet_NaN();
+
+class CellHeights {
+ public:
+  explicit CellHeights(const CellWindow& window);
+
+  // The window's cell holding (x, y); false when none does.
+  bool CellOf(double x, double y, int64_t* col, int64_t* row) const;
+  // z is kept as float (the raster's type). Add ignores points outside the window (counted in ignored()).
+  void Add(double x, double y, double z);
+  void AddToCell(int64_t col, int64_t row, double z);  // (col, row) must lie in the window
+  uint64_t points() const { return keys_.size(); }
+  uint64_t ignored() const { return ignored_; }
+  const CellWindow& window() const { return window_; }
+
+  // One value per cell of the window, north-up (CellWindow::Index); consumes the points.
+  std::vector<float> Reduce(double quantile, int min_points);
+
+ private:
+  CellWindow window_;
+  std::vector<uint64_t> keys_;  // (raster index << 32) | order-preserving bits of the float z
+  uint64_t ignored_ = 0;
+};
+
+}  // namespace sacfuse

@@ -1,0 +1,95 @@
+// The cells of raster products (CellWindow) and the per-cell height rule (CellHeights), on hand-made points with
+// known answers.
+#include "core/cell_heights.h"
+
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "core/cell_window.h"
+
+namespace sacfuse {
+namespace {
+
+TEST(CellWindowTest, CellsAreHalfOpenMultiplesOfTheCellAndRasterRowsRunSouth) {
+  EXPECT_EQ(CellIndexOf(0.0, 0.5), 0);
+  EXPECT_EQ(CellIndexOf(0.4999, 0.5), 0);
+  EXPECT_EQ(CellIndexOf(0.5, 0.5), 1);
+  EXPECT_EQ(CellIndexOf(-0.0001, 0.5), -1);
+  EXPECT_EQ(CellIndexOf(770500.3, 0.1), 7705003);  // 0.1 is not exact in binary: the edge formula decides
+  EXPECT_LE(CellEdge(7705003, 0.1), 770500.3);
+  // A tile core [20, 40) x [0, 20) with 0.5 m cells: exactly 40 x 40 cells from column 40, row 0.
+  const CellWindow core = CellWindowOfHalfOpen(Box2d(20, 0, 40, 20), 0.5);
+  EXPECT_EQ(core.col0, 40);
+  EXPECT_EQ(core.row0, 0);
+  EXPECT_EQ(core.cols, 40);
+  EXPECT_EQ(core.rows, 40);
+  // A closed area covers the cell its max edge falls in.
+  const CellWindow area = CellWindowCovering(Box2d(20, 0, 40, 20), 0.5);
+  EXPECT_EQ(area.cols, 41);
+  EXPECT_DOUBLE_EQ(area.north(), 20.5);
+  // North-up: the northern row is raster row 0.
+  EXPECT_EQ(core.Index(40, 39), 0u);
+  EXPECT_EQ(core.Index(41, 39), 1u);
+  EXPECT_EQ(core.Index(40, 38), 40u);
+  EXPECT_EQ(core.YOffsetIn(core.Grown(3)), 3);
+  EXPECT_TRUE(IsWholeNumberOfCells(25.0, 0.2));
+  EXPECT_TRUE(IsWholeNumberOfCells(20.0, 0.1));
+  EXPECT_FALSE(IsWholeNumberOfCells(25.0, 2.0));
+}
+
+TEST(CellWindowTest, BlocksAreAlignedToTheLatticeAndCoverTheExtentOnce) {
+  CellWindow extent;
+  extent.cell_m = 1.0;
+  extent.col0 = -5;
+  extent.row0 = 3;
+  extent.cols = 23;
+  extent.rows = 9;
+  const std::vector<CellBlock> blocks = CellBlocksOf(extent, 10);
+  ASSERT_EQ(blocks.size(), 3u * 2u);  // columns [-10,0) [0,10) [10,20) [20,30) clipped to [-5,18): 3; rows 2
+  size_t cells = 0;
+  for (const CellBlock& b : blocks) {
+    cells += b.window.size();
+    EXPECT_EQ(b.window.Intersection(extent), b.window);
+    EXPECT_EQ(((b.window.col0 % 10) + 10) % 10 == 0 || b.window.col0 == extent.col0, true);
+  }
+  EXPECT_EQ(cells, extent.size());
+  EXPECT_GT(blocks.front().by, blocks.back().by);  // north first
+}
+
+TEST(CellHeightsTest, QuantileOfEachCellsHeightsAsScoreDsmGridsThem) {
+  CellWindow w;
+  w.cell_m = 1.0;
+  w.cols = 2;
+  w.rows = 1;
+  CellHeights h(w);
+  // Cell (0, 0): heights 1..10; cell (1, 0): one point.
+  for (int k = 1; k <= 10; ++k) h.Add(0.5, 0.5, k);
+  h.Add(1.2, 0.9, 7.25);
+  h.Add(2.5, 0.5, 99);  // outside
+  EXPECT_EQ(h.points(), 11u);
+  EXPECT_EQ(h.ignored(), 1u);
+  CellHeights copy = h;
+  // q = 0.9 over 10 values: index floor(0.9 * 9 + 0.5) = 8 -> the 9th value.
+  const std::vector<float> p90 = h.Reduce(0.9, 1);
+  EXPECT_FLOAT_EQ(p90[0], 9.0f);
+  EXPECT_FLOAT_EQ(p90[1], 7.25f);
+  const std::vector<float> median = copy.Reduce(0.5, 2);  // index floor(4.5 + 0.5) = 5 -> 6
+  EXPECT_FLOAT_EQ(median[0], 6.0f);
+  EXPECT_TRUE(std::isnan(median[1]));  // one point < min_points
+}
+
+TEST(CellHeightsTest, NegativeHeightsSortBelowPositiveOnes) {
+  CellWindow w;
+  w.cell_m = 1.0;
+  w.cols = w.rows = 1;
+  CellHeights h(w);
+  for (const double z : {-3.5, 2.0, -0.25, 0.0, -10.0}) h.Add(0.5, 0.5, z);
+  EXPECT_FLOAT_EQ(h.Reduce(0.0, 1)[0], -10.0f);
+  CellHeights g(w);
+  for (const double z : {-3.5, 2.0, -0.25, 0.0, -10.0}) g.Add(0.5, 0.5, z);
+  EXPECT_FLOAT_EQ(g.Reduce(1.0, 1)[0], 2.0f);
+}
+
+}  // namespace
+}  // namespace sacfuse

@@ -1,0 +1,82 @@
+#include "io/cloud_grid.h"
+
+#include <algorithm>
+
+#include "core/cell_heights.h"
+
+namespace sacfuse {
+namespace {
+
+constexpr size_t kChunk = 1 << 16;
+
+// Bands of whole rows (north first) holding at most `max_points` points each (a row holding more is a band of
+// its own).
+std::vector<CellWindow> RowBands(const CellWindow& window, const std::vector<uint64_t>& per_row, uint64_t max_points) {
+  std::vector<CellWindow> bands;
+  int64_t top = window.rows;  // rows [begin, top) counted from row0
+  while (top > 0) {
+    int64_t begin = top - 1;
+    uint64_t n = per_row[static_cast<size_t>(begin)];
+    while (begin > 0 && n + per_row[static_cast<size_t>(begin - 1)] <= max_points) {
+      n += per_row[static_cast<size_t>(--begin)];
+    }
+    CellWindow band = window;
+    band.row0 = window.row0 + begin;
+    band.rows = top - begin;
+    bands.push_back(band);
+    top = begin;
+  }
+  return bands;
+}
+
+}  // namespace
+
+CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const CloudGridOptions& options) {
+  CloudGrid out;
+  out.values.assign(window.size(), kNoCellValue);
+  if (window.empty()) return out;
+  const CellHeights locate(window);  // the cell of each point, one rule for every band
+  const auto kept = [&](uint8_t c) { return !options.keep || options.keep(c); };
+  CloudChunk chunk;
+  std::vector<CellWindow> bands;
+  if (cloud.point_count() <= options.max_points_in_memory) {
+    bands.push_back(window);
+  } else {
+    std::vector<uint64_t> per_row(static_cast<size_t>(window.rows), 0);
+    cloud.Rewind();
+    ++out.passes;
+    while (cloud.Read(&chunk, kChunk) > 0) {
+      for (size_t i = 0; i < chunk.xyz.size(); ++i) {
+        int64_t col = 0, row = 0;
+        if (kept(chunk.classification[i]) && locate.CellOf(chunk.xyz[i].x(), chunk.xyz[i].y(), &col, &row)) {
+          ++per_row[static_cast<size_t>(row - window.row0)];
+        }
+      }
+    }
+    bands = RowBands(window, per_row, options.max_points_in_memory);
+  }
+  for (const CellWindow& band : bands) {
+    CellHeights heights(band);
+    cloud.Rewind();
+    ++out.passes;
+    while (cloud.Read(&chunk, kChunk) > 0) {
+      for (size_t i = 0; i < chunk.xyz.size(); ++i) {
+        const Eigen::Vector3d& p = chunk.xyz[i];
+        int64_t col = 0, row = 0;
+        if (!kept(chunk.classification[i]) || !locate.CellOf(p.x(), p.y(), &col, &row)) {
+          if (bands.size() == 1 || &band == &bands.front()) ++out.points_outside;
+          continue;
+        }
+        if (band.Contains(col, row)) heights.AddToCell(col, row, p.z());
+      }
+    }
+    out.points_gridded += heights.points();
+    const std::vector<float> v = heights.Reduce(options.quantile, options.min_points);
+    std::copy(v.begin(), v.end(),
+              out.values.begin() + static_cast<std::ptrdiff_t>(band.YOffsetIn(window) * window.cols));
+  }
+  cloud.Rewind();
+  return out;
+}
+
+}  // namespace sacfuse

@@ -1,0 +1,101 @@
+#include "io/dsm_file.h"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/cell_heights.h"
+
+namespace sacfuse {
+namespace {
+
+DsmWriteStats Assemble(const CellWindow& extent, const RawCellReader& read, const DsmRule& rule,
+                       const RasterFormat& format, const RasterOutput& output) {
+  const auto start = std::chrono::steady_clock::now();
+  DsmWriteStats stats;
+  const CellFinisher finish = [&](const std::vector<float>& raw, const CellWindow& outer, const CellWindow& inner) {
+    const CellWindow inside = inner.Intersection(extent);
+    for (int64_t r = 0; r < inner.rows; ++r) {  // raw cells with a value, counted once (in their own block)
+      for (int64_t c = 0; c < inner.cols; ++c) {
+        const int64_t col = inner.col0 + c, row = inner.row0 + inner.rows - 1 - r;
+        if (inside.Contains(col, row) && !std::isnan(raw[outer.Index(col, row)])) ++stats.raw_cells_with_value;
+      }
+    }
+    return FinishDsm(raw, outer, inner, rule, &stats.finish);
+  };
+  stats.assembly = AssembleRaster(extent, DsmHaloCells(rule, extent.cell_m), read, finish, format, output);
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return stats;
+}
+
+}  // namespace
+
+RasterFormat DsmRasterFormat(const std::string& crs_wkt) {
+  RasterFormat f;
+  f.nodata = kDsmNodata;
+  f.crs_wkt = crs_wkt;
+  f.overview_resampling = "AVERAGE";
+  f.band_descriptions = {"height (m)"};
+  return f;
+}
+
+RasterFormat DsmRawFormat(const std::string& crs_wkt) {
+  RasterFormat f;
+  f.nodata = std::numeric_limits<double>::quiet_NaN();
+  f.crs_wkt = crs_wkt;
+  return f;
+}
+
+DsmWriteStats WriteDsm(const std::vector<float>& raw, const CellWindow& extent, const DsmRule& rule,
+                       const RasterFormat& format, const RasterOutput& output) {
+  const RawCellReader read = [&](const CellWindow& w) {
+    std::vector<float> out(w.size(), kNoCellValue);
+    const CellWindow common = w.Intersection(extent);
+    for (int64_t row = common.row0; row < common.row0 + common.rows; ++row) {
+      for (int64_t col = common.col0; col < common.col0 + common.cols; ++col) {
+        out[w.Index(col, row)] = raw[extent.Index(col, row)];
+      }
+    }
+    return out;
+  };
+  return Assemble(extent, read, rule, format, output);
+}
+
+CloudGridOptions DsmCloudGridOptions(const DsmRule& rule, uint64_t max_points_in_memory) {
+  CloudGridOptions options;
+  options.quantile = rule.quantile;
+  options.min_points = rule.min_points;
+  options.max_points_in_memory = max_points_in_memory;
+  return options;
+}
+
+DsmWriteStats WriteDsmOfCloud(PointCloudFile& cloud, const CellWindow& extent, const DsmRule& rule,
+                              const RasterFormat& format, const RasterOutput& output, uint64_t max_points_in_memory,
+                              CloudGrid* grid) {
+  CloudGrid raw = GridCloud(cloud, extent, DsmCloudGridOptions(rule, max_points_in_memory));
+  DsmWriteStats stats;
+  if (raw.points_gridded > 0) stats = WriteDsm(raw.values, extent, rule, format, output);
+  if (grid != nullptr) {
+    raw.values.clear();
+    *grid = std::move(raw);
+  }
+  return stats;
+}
+
+DsmWriteStats WriteDsmFromRawFiles(const std::vector<std::string>& raw_files, const CellWindow& extent,
+                                   const DsmRule& rule, const RasterFormat& format, const RasterOutput& output) {
+  const RasterFile mosaic = RasterFile::Mosaic(raw_files);
+  const RawCellReader read = [&](const CellWindow& w) {
+    std::vector<float> v = mosaic.ReadFloat(w);
+    // Cells outside the product's extent have no value (the tiles' windows never leave it; kept explicit).
+    for (int64_t r = 0; r < w.rows; ++r) {
+      for (int64_t c = 0; c < w.cols; ++c) {
+        if (!extent.Contains(w.col0 + c, w.row0 + w.rows - 1 - r)) v[static_cast<size_t>(r * w.cols + c)] = kNoCellValue;
+      }
+    }
+    return v;
+  };
+  return Assemble(extent, read, rule, format, output);
+}
+
+}  // namespace sacfuse

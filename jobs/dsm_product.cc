@@ -1,0 +1,214 @@
+#include "jobs/dsm_product.h"
+
+#include <cmath>
+#include <filesystem>
+
+#include <spdlog/spdlog.h>
+
+#include "config/output_layout.h"
+#include "core/crs.h"
+#include "core/error.h"
+#include "io/cloud_grid.h"
+#include "io/gdal_raster.h"
+#include "io/point_cloud_file.h"
+#include "io/raster_crs.h"
+#include "jobs/method_geometry.h"
+#include "tiles/memory_model.h"
+#include "tiles/tile_manifest.h"
+#include "tiles/tile_marker.h"
+
+namespace sacfuse {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kAutoCellGsd = 2.0;  // the automatic DSM cell, in GSDs (docs/dsm-and-ortho.md: measured)
+
+// 1, 2, 2.5, 5 x 10^k from the largest at most `v` down to 1 mm.
+std::vector<double> NiceValuesDownFrom(double v) {
+  std::vector<double> out;
+  for (int k = static_cast<int>(std::floor(std::log10(v))) + 1; k >= -3; --k) {
+    for (const double m : {5.0, 2.5, 2.0, 1.0}) {
+      const double x = m * std::pow(10.0, k);
+      if (x <= v * (1 + 1e-9) && x >= 1e-3 * (1 - 1e-9)) out.push_back(x);
+    }
+  }
+  return out;
+}
+
+// The nice value nearest to v in log scale.
+double NearestNice(double v) {
+  double best = 1.0, best_d = 1e300;
+  const int k0 = static_cast<int>(std::floor(std::log10(v)));
+  for (int k = k0 - 1; k <= k0 + 1; ++k) {
+    for (const double m : {1.0, 2.0, 2.5, 5.0}) {
+      const double x = m * std::pow(10.0, k);
+      const double d = std::abs(std::log(x / v));
+      if (d < best_d) best = x, best_d = d;
+    }
+  }
+  return best;
+}
+
+void RemoveQuietly(const std::string& path) {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
+// The DSM's extent: the cells of the project area that meet the bounds of the points (so the raster does not
+// carry the empty margin of the views' footprints).
+CellWindow ExtentOfPoints(const DsmGrid& grid, const Box2d& points) {
+  return grid.extent.Intersection(CellWindowCovering(points, grid.extent.cell_m));
+}
+
+DsmOutcome OutcomeOf(const CellWindow& extent, const DsmWriteStats& s) {
+  DsmOutcome o;
+  o.written = true;
+  o.path = s.assembly.files.front();
+  o.cell_m = extent.cell_m;
+  o.cols = extent.cols;
+  o.rows = extent.rows;
+  o.cells_with_value = s.assembly.cells_with_value;
+  o.raw_cells_with_value = s.raw_cells_with_value;
+  o.cells_filled = s.finish.cells_filled;
+  o.files = s.assembly.files.size();
+  o.seconds = s.seconds;
+  spdlog::info("dsm: {} ({} x {} cells of {} m, {:.1f} % with a value: {} from points, {} in filled holes) in {:.1f} s",
+               o.path, o.cols, o.rows, o.cell_m, o.cells_with_value * 100.0 / std::max<double>(1, o.cols * o.rows),
+               o.raw_cells_with_value, o.cells_filled, o.seconds);
+  return o;
+}
+
+// Removes the files of the layout not written now (a run switching layouts leaves no stale DSM beside the new).
+void RemoveOtherLayout(const JobConfig& config, const RasterOutput& output) {
+  if (output.blocks) {
+    RemoveQuietly(DsmPath(config));
+  } else {
+    RemoveQuietly(DsmVrtPath(config));
+    RemoveQuietly(DsmBlocksDir(config));
+  }
+}
+
+}  // namespace
+
+double AutoDsmCell(double gsd_m, double tile_size_m) {
+  const double target = NearestNice(kAutoCellGsd * gsd_m);
+  if (tile_size_m <= 0) return target;
+  for (const double cell : NiceValuesDownFrom(target)) {
+    if (IsWholeNumberOfCells(tile_size_m, cell)) return cell;
+  }
+  throw ConfigError("output.dsm_cell_m = 0 (automatic): no cell from " + std::to_string(target) +
+                    " m down to 1 mm divides tiling.tile_size_m = " + std::to_string(tile_size_m) +
+                    " into whole cells; give output.dsm_cell_m");
+}
+
+double ResolveDsmCell(const JobConfig& config, const DepthBlock& input, double tile_size_m) {
+  if (!DsmWanted(config)) return 0.0;
+  if (config.output.dsm_cell_m > 0) return config.output.dsm_cell_m;
+  std::vector<DepthRasterSize> sizes;
+  for (const View& view : input.views()) sizes.push_back(input.DepthSize(view));
+  double z_min = 0, z_max = 0;
+  std::string source;
+  BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &source);
+  const double gsd = BlockDepthGsd(input, sizes, z_min, z_max);
+  if (!(gsd > 0)) {
+    throw ConfigError("output.dsm_cell_m = 0 (automatic): no view looks down on the block, so its GSD is unknown; "
+                      "give output.dsm_cell_m");
+  }
+  const double cell = AutoDsmCell(gsd, tile_size_m);
+  spdlog::info("dsm: cell {} m (2 x the block's GSD of {:.3f} m, rounded{})", cell, gsd,
+               tile_size_m > 0 ? fmt::format("; divides the {} m tiles", tile_size_m) : std::string());
+  return cell;
+}
+
+DsmRule DsmRuleOf(const OutputOptions& output) {
+  DsmRule rule;
+  rule.max_hole_m = output.dsm_max_hole_m;
+  return rule;
+}
+
+std::optional<DsmGrid> DsmGridOf(const JobConfig& config, const DepthBlock& input, const Box2d& project_area) {
+  if (!DsmWanted(config)) return std::nullopt;
+  DsmGrid grid;
+  grid.extent = CellWindowCovering(project_area, ResolveDsmCell(config, input, config.tiling.tile_size_m));
+  grid.rule = DsmRuleOf(config.output);
+  grid.crs_wkt = RasterCrsWkt(ParseProjectCrs(config.crs));
+  grid.max_points_in_memory = MemoryBudgetBytes(config.resources.memory_gb) / 4 / 8;
+  return grid;
+}
+
+bool DsmTileProduct::Make(const PlannedTile& tile, const std::string& las_path, const std::string& path) const {
+  if (las_path.empty()) return false;
+  const CellWindow window = CellWindowOfHalfOpen(tile.core, grid_.extent.cell_m).Intersection(grid_.extent);
+  if (window.empty()) return false;
+  PointCloudFile cloud(las_path);
+  const CloudGrid raw = GridCloud(cloud, window, DsmCloudGridOptions(grid_.rule, cloud, grid_.max_points_in_memory));
+  if (raw.points_gridded == 0) return false;
+  WriteRasterFile(path, window, DsmRawFormat(grid_.crs_wkt), raw.values.data(), RasterLayout::kIntermediate);
+  return true;
+}
+
+void RemoveDsmFiles(const JobConfig& config) {
+  for (const std::string& path : {DsmPath(config), DsmVrtPath(config), DsmBlocksDir(config)}) {
+    std::error_code ec;
+    if (fs::exists(path, ec)) {
+      spdlog::info("dsm: removing {} of an earlier run", path);
+      RemoveQuietly(path);
+    }
+  }
+}
+
+RasterOutput DsmRasterOutput(const JobConfig& config, const CellWindow& extent) {
+  RasterOutput out;
+  out.blocks = RasterLayoutIsBlocks(config.output.raster_layout, extent);
+  out.single_path = DsmPath(config);
+  out.blocks_dir = DsmBlocksDir(config);
+  out.vrt_path = DsmVrtPath(config);
+  return out;
+}
+
+DsmOutcome AssembleTiledDsm(const JobConfig& config, const TilePlan& plan, const DsmGrid& grid) {
+  const std::string tiles_dir = TilesDir(config);
+  std::vector<std::string> raw_files;
+  const std::string suffix = DsmTileProduct(grid).suffix();
+  Box2d points;  // the XY bounds of the tiles' points: the DSM's extent within the project area
+  for (const std::string& id : TileIdsWithViews(plan)) {
+    const auto marker = ReadTileDoneMarker(tiles_dir, id);
+    if (!marker) throw Error(TileDonePath(tiles_dir, id) + ": done marker vanished before the DSM was assembled");
+    for (const TileProductFile& p : marker->products) {
+      if (p.suffix != suffix) continue;
+      raw_files.push_back(TileProductPath(tiles_dir, id, suffix));
+      points.Extend(Box2d(marker->min[0], marker->min[1], marker->max[0], marker->max[1]));
+    }
+  }
+  const CellWindow extent = ExtentOfPoints(grid, points);
+  const RasterOutput output = DsmRasterOutput(config, extent);
+  RemoveOtherLayout(config, output);
+  if (raw_files.empty()) {
+    spdlog::warn("dsm: no tile has points in the DSM's extent; no DSM written");
+    RemoveDsmFiles(config);
+    return {};
+  }
+  return OutcomeOf(extent, WriteDsmFromRawFiles(raw_files, extent, grid.rule, DsmRasterFormat(grid.crs_wkt), output));
+}
+
+DsmOutcome MakeUntiledDsm(const JobConfig& config, const DsmGrid& grid, const std::string& fused_las_path) {
+  PointCloudFile cloud(fused_las_path);
+  const CellWindow extent = ExtentOfPoints(grid, cloud.bounds_xy());
+  const RasterOutput output = DsmRasterOutput(config, extent);
+  RemoveOtherLayout(config, output);
+  CloudGrid raw;
+  DsmWriteStats stats;
+  if (!extent.empty()) {
+    stats = WriteDsmOfCloud(cloud, extent, grid.rule, DsmRasterFormat(grid.crs_wkt), output, grid.max_points_in_memory,
+                            &raw);
+  }
+  if (raw.points_gridded == 0) {
+    spdlog::warn("dsm: {} has no points in the DSM's extent; no DSM written", fused_las_path);
+    RemoveDsmFiles(config);
+    return {};
+  }
+  return OutcomeOf(extent, stats);
+}
+
+}  // namespace sacfuse

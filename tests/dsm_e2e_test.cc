@@ -1,0 +1,229 @@
+// End-to-end: the DSM product on the simulated tiny block (crs EPSG:25832, so output.dsm: auto writes it).
+// (a) an untiled run writes DIR/dsm.tif: GDAL's COG validator accepts it, GDAL's Python bindings (an independent
+//     reader, test-time only) read the same cells, nodata and CRS as we do; run_report.json and eval.json carry
+//     the DSM; the report shows its thumbnail;
+// (b) a tiled run (20 m tiles, output.raster_layout: tiles, so DIR/dsm.vrt over COG blocks): its DSM equals
+//     `sacfuse dsm` of its own fused.laz on the same extent (the tiles' windows and the hole filling across them
+//     leave no seam), but for cells on tile edges where the LAS quantum put a point exactly on the edge; each tile's
+//     done marker covers its DSM window;
+// (c) `sacfuse dsm` on a LAS takes the file's CRS, refuses bad arguments, and `sacfuse eval --dsm` scores a DSM.
+// The Python checks skip with a message when /usr/bin/python3 has no GDAL bindings (Debian's python3-gdal).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "io/gdal_raster.h"
+#include "tests/support/block_suite.h"
+
+namespace sacfuse {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::ReadJsonFile;
+using testing::RunCommand;
+using testing::SacfuseBinary;
+using testing::ShellQuote;
+
+constexpr const char* kPython = "/usr/bin/python3";
+
+bool PythonHasGdal() { return RunCommand(std::string(kPython) + " -c 'from osgeo import gdal' >/dev/null 2>&1") == 0; }
+
+class DsmEndToEndTest : public testing::TinyBlockSuite {
+ protected:
+  static void SetUpTestSuite() {
+    SimulateBlock();
+    const double gsd = BlockGsd();
+    for (const auto& [name, tiling, layout] : {std::tuple<std::string, double, std::string>{"untiled", 0.0, "auto"},
+                                              {"tiled", 20.0, "tiles"}}) {
+      std::ofstream(Config(name)) << "crs: \"EPSG:25832\"\n"
+                                  << "input: {path: " << Block().string() << "}\n"
+                                  << "output: {dir: " << Out(name).string() << ", raster_layout: " << layout << "}\n"
+                                  << "tiling: {tile_size_m: " << tiling << ", halo_m: 5}\n"
+                                  << "evaluation: {reference: " << (Block() / "reference.las").string()
+                                  << ", mask: " << (Block() / "eval_mask.png").string() << ", gsd_m: " << gsd
+                                  << "}\n";
+    }
+    for (const std::string name : {"untiled", "tiled"}) {
+      std::string out;
+      ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(Config(name)), &out), 0) << out;
+    }
+  }
+
+  // The extent of a DSM as --extent for `sacfuse dsm`: the centres of its corner cells.
+  static std::string ExtentArg(const CellWindow& w) {
+    char buf[256];
+    std::snprintf(buf, sizeof(buf), "%.6f,%.6f,%.6f,%.6f", w.west() + 0.5 * w.cell_m, w.south() + 0.5 * w.cell_m,
+                  w.east() - 0.5 * w.cell_m, w.north() - 0.5 * w.cell_m);
+    return buf;
+  }
+};
+
+TEST_F(DsmEndToEndTest, UntiledRunWritesAValidCogThatGdalReadsLikeWeDo) {
+  const fs::path dsm = Out("untiled") / "dsm.tif";
+  ASSERT_TRUE(fs::exists(dsm));
+  const RasterFile ours(dsm.string());
+  const CellWindow w = ours.window();
+  // The automatic cell: 2 x the block's GSD, rounded.
+  EXPECT_NEAR(w.cell_m, 2 * BlockGsd(), 0.5 * BlockGsd());
+  const nlohmann::json report = ReadJsonFile(Out("untiled") / "run_report.json");
+  ASSERT_TRUE(report.contains("dsm")) << report.dump(2);
+  EXPECT_DOUBLE_EQ(report.at("dsm").at("cell_m").get<double>(), w.cell_m);
+  const double filled = report.at("dsm").at("cells_with_value").get<double>() / static_cast<double>(w.size());
+  EXPECT_GT(filled, 0.8);
+  const nlohmann::json eval = ReadJsonFile(Out("untiled") / "eval.json");
+  ASSERT_TRUE(eval.contains("dsm")) << eval.dump(2);
+  EXPECT_GT(eval.at("dsm").at("all").at("completeness").get<double>(), 0.95);
+  EXPECT_LT(eval.at("dsm").at("all").at("nmad_m").get<double>(), 3 * BlockGsd());
+  EXPECT_TRUE(fs::exists(Out("untiled") / "report" / "dsm.png"));
+  EXPECT_NE(testing::ReadFileBytes(Out("untiled") / "report" / "index.html").find("dsm.png"), std::string::npos);
+
+  if (!PythonHasGdal()) GTEST_SKIP() << kPython << " has no GDAL bindings (Debian: python3-gdal): COG validator and "
+                                     << "independent reader not run";
+  std::string out;
+  const int code = RunCommand(std::string(kPython) + " -m osgeo_utils.samples.validate_cloud_optimized_geotiff " +
+                                  ShellQuote(dsm) + " 2>&1",
+                              &out);
+  EXPECT_EQ(code, 0) << out;
+  EXPECT_NE(out.find("is a valid cloud optimized GeoTIFF"), std::string::npos) << out;
+  // GDAL's own reading: size, georeference, nodata, CRS (EPSG:25832), compression and predictor, tiles, overviews,
+  // and every cell's value as a sum and count over the cells with a value.
+  const fs::path script = Dir() / "read_dsm.py";
+  std::ofstream(script) << "import json, sys\nfrom osgeo import gdal, osr\nimport numpy as np\n"
+                           "d = gdal.Open(sys.argv[1]); b = d.GetRasterBand(1)\n"
+                           "a = b.ReadAsArray().astype(np.float64); nd = b.GetNoDataValue()\n"
+                           "ok = a != nd\n"
+                           "s = osr.SpatialReference(wkt=d.GetProjection()); s.AutoIdentifyEPSG()\n"
+                           "md = d.GetMetadata('IMAGE_STRUCTURE')\n"
+                           "print(json.dumps({'size': [d.RasterXSize, d.RasterYSize], 'gt': d.GetGeoTransform(),\n"
+                           "  'nodata': nd, 'epsg': s.GetAuthorityCode('PROJCS'), 'type': gdal.GetDataTypeName(b.DataType),\n"
+                           "  'compression': md.get('COMPRESSION'), 'predictor': md.get('PREDICTOR'),\n"
+                           "  'block': b.GetBlockSize(), 'overviews': b.GetOverviewCount(),\n"
+                           "  'count': int(ok.sum()), 'sum': float(a[ok].sum())}))\n";
+  ASSERT_EQ(RunCommand(std::string(kPython) + " " + ShellQuote(script) + " " + ShellQuote(dsm), &out), 0) << out;
+  const nlohmann::json g = nlohmann::json::parse(out);
+  EXPECT_EQ(g.at("size").at(0).get<int64_t>(), w.cols);
+  EXPECT_EQ(g.at("size").at(1).get<int64_t>(), w.rows);
+  EXPECT_DOUBLE_EQ(g.at("gt").at(0).get<double>(), w.west());
+  EXPECT_DOUBLE_EQ(g.at("gt").at(3).get<double>(), w.north());
+  EXPECT_DOUBLE_EQ(g.at("gt").at(1).get<double>(), w.cell_m);
+  EXPECT_DOUBLE_EQ(g.at("gt").at(5).get<double>(), -w.cell_m);
+  EXPECT_DOUBLE_EQ(g.at("nodata").get<double>(), -9999.0);
+  EXPECT_EQ(g.at("epsg").get<std::string>(), "25832");
+  EXPECT_EQ(g.at("type").get<std::string>(), "Float32");
+  EXPECT_EQ(g.at("compression").get<std::string>(), "DEFLATE");
+  EXPECT_EQ(g.at("predictor").get<std::string>(), "3");
+  EXPECT_EQ(g.at("block").at(0).get<int>(), 512);
+  const std::vector<float> v = ours.ReadFloat(w);
+  double sum = 0;
+  int64_t count = 0;
+  for (const float x : v) {
+    if (!std::isnan(x)) sum += x, ++count;
+  }
+  EXPECT_EQ(g.at("count").get<int64_t>(), count);
+  EXPECT_NEAR(g.at("sum").get<double>(), sum, 1e-6 * std::abs(sum));
+}
+
+TEST_F(DsmEndToEndTest, TiledDsmEqualsTheDsmOfItsOwnCloudAndTheVrtLayoutHoldsTheSameCells) {
+  ASSERT_TRUE(fs::exists(Out("tiled") / "dsm.vrt"));
+  EXPECT_FALSE(fs::exists(Out("tiled") / "dsm.tif"));
+  EXPECT_GE(testing::CountFilesNamedWith(Out("tiled") / "dsm", ".tif"), 1u);
+  const RasterFile tiled((Out("tiled") / "dsm.vrt").string());
+  const CellWindow w = tiled.window();
+  const CellWindow untiled = RasterFile((Out("untiled") / "dsm.tif").string()).window();
+  EXPECT_EQ(w.cell_m, untiled.cell_m);
+  // One lattice, nearly one extent (the bounds of two slightly different clouds within the same project area).
+  EXPECT_GT(w.Intersection(untiled).size(), 95 * std::min(w.size(), untiled.size()) / 100);
+  std::string out;
+  const fs::path regridded = Dir() / "regridded.tif";
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " dsm " + ShellQuote(Out("tiled") / "fused.laz") + " --cell " +
+                           std::to_string(w.cell_m) + " --extent " + ExtentArg(w) + " --out " + ShellQuote(regridded),
+                       &out),
+            0)
+      << out;
+  const std::vector<float> a = tiled.ReadFloat(w);
+  const RasterFile again(regridded.string());
+  ASSERT_EQ(again.window(), w);
+  const std::vector<float> b = again.ReadFloat(w);
+  // Cells on tile edges (20 m tiles) may differ where a point sits exactly on the edge after quantisation: it
+  // counts for the tile that fused it, but a whole-cloud gridding puts it in the cell beyond the edge.
+  const auto on_tile_edge = [&](int64_t col, int64_t row) {
+    const auto near_edge = [&](int64_t k) {
+      const double lo = std::fmod(std::abs(CellEdge(k, w.cell_m)), 20.0), hi = std::fmod(std::abs(CellEdge(k + 1, w.cell_m)), 20.0);
+      return lo < 1e-6 || lo > 20.0 - 1e-6 || hi < 1e-6 || hi > 20.0 - 1e-6;
+    };
+    return near_edge(col) || near_edge(row);
+  };
+  size_t same = 0, differ_on_edges = 0, differ_inside = 0;
+  for (int64_t row = w.row0; row < w.row0 + w.rows; ++row) {
+    for (int64_t col = w.col0; col < w.col0 + w.cols; ++col) {
+      const size_t i = w.Index(col, row);
+      const bool equal = (std::isnan(a[i]) && std::isnan(b[i])) || a[i] == b[i];
+      if (equal) {
+        ++same;
+      } else if (on_tile_edge(col, row)) {
+        ++differ_on_edges;
+      } else {
+        ++differ_inside;
+      }
+    }
+  }
+  std::printf("dsm e2e: tiled DSM vs `sacfuse dsm` of its cloud: %zu of %zu cells identical, %zu differ on tile "
+              "edges, %zu elsewhere\n",
+              same, w.size(), differ_on_edges, differ_inside);
+  EXPECT_EQ(differ_inside, 0u);
+  EXPECT_LE(differ_on_edges, w.size() / 200);
+  // Each tile's raw window is covered by its done marker.
+  size_t with_dsm = 0;
+  for (const auto& e : fs::directory_iterator(Out("tiled") / "tiles")) {
+    const std::string name = e.path().filename().string();
+    if (name.find(".done.json") == std::string::npos) continue;
+    const nlohmann::json m = ReadJsonFile(e.path());
+    for (const auto& p : m.value("products", nlohmann::json::array())) {
+      with_dsm += p.at("suffix").get<std::string>() == "dsm.tif" ? 1 : 0;
+    }
+  }
+  EXPECT_GT(with_dsm, 4u);
+}
+
+TEST_F(DsmEndToEndTest, DsmCommandTakesTheLasCrsAndEvalScoresADsm) {
+  std::string out;
+  const fs::path dsm = Dir() / "cmd.tif";
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " dsm " + ShellQuote(Out("untiled") / "fused.laz") + " --cell 0.5 --out " +
+                           ShellQuote(dsm),
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("cells of 0.5 m"), std::string::npos) << out;
+  const RasterFile r(dsm.string());
+  EXPECT_DOUBLE_EQ(r.window().cell_m, 0.5);
+  EXPECT_NE(r.crs_wkt().find("25832"), std::string::npos);
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(Out("untiled") / "fused.laz") + " --reference " +
+                           ShellQuote(Block() / "reference.las") + " --mask " + ShellQuote(Block() / "eval_mask.png") +
+                           " --gsd " + std::to_string(BlockGsd()) + " --dsm " + ShellQuote(dsm) + " --json " +
+                           ShellQuote(Dir() / "eval_cmd.json"),
+                       &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("NMAD"), std::string::npos) << out;
+  EXPECT_DOUBLE_EQ(ReadJsonFile(Dir() / "eval_cmd.json").at("dsm").at("cell_m").get<double>(), 0.5);
+  // Bad arguments: exit 2 naming the option.
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " dsm " + ShellQuote(Out("untiled") / "fused.laz") + " --cell -1 --out " +
+                           ShellQuote(Dir() / "x.tif"),
+                       &out),
+            2);
+  EXPECT_NE(out.find("--cell"), std::string::npos) << out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " dsm " + ShellQuote(Block() / "metadata.json") + " --cell 1 --out " +
+                           ShellQuote(Dir() / "x.tif"),
+                       &out),
+            1);
+  EXPECT_NE(out.find("not a LAS, LAZ or PLY"), std::string::npos) << out;
+}
+
+}  // namespace
+}  // namespace sacfuse
