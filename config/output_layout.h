@@ -30,10 +30,10 @@ std::string RunStatePath(const JobConfig& config);
 std::string PlanJsonPath(const JobConfig& config);
 std::string CoregistrationPath(const JobConfig& config);
 std::string TilesDir(const JobConfig& config);
-std::string ReportDir(const JobConfig& config);
+std::string ReportDir(const JobConfig& config);  // the default report folder (`sacfuse report --out` may differ)
 std::string DsmPath(const JobConfig& config);       // DIR/dsm.tif
 std::string DsmVrtPath(const JobConfig& config);    // DIR/dsm.vrt
-std::string DsmBlocksDir(const JobConfig& config);  // DIR/dsm  // the default report folder (`sacfuse report --out` may differ)
+std::string DsmBlocksDir(const JobConfig& config);  // DIR/dsm
 
 // The superpixel (and colour) cache folder of a job: fusion.superpixel_cache_dir, or <output.dir>/superpixels.
 std::string SuperpixelCacheDir(const JobConfig& config);

@@ -23,7 +23,21 @@ float FromOrderedBits(uint32_t b) {
   return v;
 }
 
+// The position of the q-quantile among `count` sorted values (count > 0).
+size_t QuantilePosition(size_t count, double quantile) {
+  return std::min(count - 1, static_cast<size_t>(std::floor(quantile * (count - 1) + 0.5)));
+}
+
 }  // namespace
+
+float CellValueOf(std::vector<float>* z, double quantile, int min_points) {
+  if (z->empty() || static_cast<int64_t>(z->size()) < min_points) return kNoCellValue;
+  std::vector<uint32_t> bits(z->size());
+  for (size_t i = 0; i < z->size(); ++i) bits[i] = OrderedBits((*z)[i]);
+  std::sort(bits.begin(), bits.end());  // the order Reduce sorts in (-0 below +0)
+  for (size_t i = 0; i < z->size(); ++i) (*z)[i] = FromOrderedBits(bits[i]);
+  return (*z)[QuantilePosition(z->size(), quantile)];
+}
 
 CellHeights::CellHeights(const CellWindow& window) : window_(window) {
   if (window.size() >= (uint64_t{1} << 32)) {
@@ -66,7 +80,7 @@ std::vector<float> CellHeights::Reduce(double quantile, int min_points) {
     while (end < n && (keys_[end] >> 32) == cell) ++end;
     const size_t count = end - begin;
     if (static_cast<int64_t>(count) >= min_points) {
-      const size_t k = std::min(count - 1, static_cast<size_t>(std::floor(quantile * (count - 1) + 0.5)));
+      const size_t k = QuantilePosition(count, quantile);
       values[cell] = FromOrderedBits(static_cast<uint32_t>(keys_[begin + k] & 0xffffffffu));
     }
     begin = end;

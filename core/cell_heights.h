@@ -14,6 +14,10 @@ namespace sacfuse {
 
 constexpr float kNoCellValue = std::numeric_limits<float>::quiet_NaN();
 
+// The value of one cell from the z of all its points (the rule Reduce applies to every cell): the q-quantile as
+// above, kNoCellValue below min_points. Sorts *z (float z, as CellHeights keeps them).
+float CellValueOf(std::vector<float>* z, double quantile, int min_points);
+
 class CellHeights {
  public:
   explicit CellHeights(const CellWindow& window);

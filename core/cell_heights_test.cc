@@ -3,6 +3,7 @@
 #include "core/cell_heights.h"
 
 #include <cmath>
+#include <cstring>
 
 #include <gtest/gtest.h>
 
@@ -89,6 +90,28 @@ TEST(CellHeightsTest, NegativeHeightsSortBelowPositiveOnes) {
   CellHeights g(w);
   for (const double z : {-3.5, 2.0, -0.25, 0.0, -10.0}) g.Add(0.5, 0.5, z);
   EXPECT_FLOAT_EQ(g.Reduce(1.0, 1)[0], 2.0f);
+}
+
+TEST(CellHeightsTest, OneCellsValueFromItsHeightsIsTheReducedValue) {
+  CellWindow w;
+  w.cell_m = 1.0;
+  w.cols = w.rows = 1;
+  const std::vector<double> zs = {4.0, -0.0, 0.0, -2.5, 7.125, 3.0, 3.0, 1e-3};
+  for (const double q : {0.0, 0.3, 0.5, 0.9, 1.0}) {
+    CellHeights h(w);
+    std::vector<float> z;
+    for (const double v : zs) {
+      h.Add(0.5, 0.5, v);
+      z.push_back(static_cast<float>(v));
+    }
+    const float reduced = h.Reduce(q, 1)[0];
+    const float one = CellValueOf(&z, q, 1);
+    EXPECT_EQ(std::memcmp(&reduced, &one, sizeof(float)), 0) << "q " << q << ": " << reduced << " vs " << one;
+  }
+  std::vector<float> two = {1.0f, 2.0f};
+  EXPECT_TRUE(std::isnan(CellValueOf(&two, 0.5, 3)));
+  std::vector<float> none;
+  EXPECT_TRUE(std::isnan(CellValueOf(&none, 0.5, 1)));
 }
 
 }  // namespace

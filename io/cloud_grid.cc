@@ -7,8 +7,6 @@
 namespace sacfuse {
 namespace {
 
-constexpr size_t kChunk = 1 << 16;
-
 // Bands of whole rows (north first) holding at most `max_points` points each (a row holding more is a band of
 // its own).
 std::vector<CellWindow> RowBands(const CellWindow& window, const std::vector<uint64_t>& per_row, uint64_t max_points) {
@@ -45,7 +43,7 @@ CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const Cloud
     std::vector<uint64_t> per_row(static_cast<size_t>(window.rows), 0);
     cloud.Rewind();
     ++out.passes;
-    while (cloud.Read(&chunk, kChunk) > 0) {
+    while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
       for (size_t i = 0; i < chunk.xyz.size(); ++i) {
         int64_t col = 0, row = 0;
         if (kept(chunk.classification[i]) && locate.CellOf(chunk.xyz[i].x(), chunk.xyz[i].y(), &col, &row)) {
@@ -59,7 +57,7 @@ CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const Cloud
     CellHeights heights(band);
     cloud.Rewind();
     ++out.passes;
-    while (cloud.Read(&chunk, kChunk) > 0) {
+    while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
       for (size_t i = 0; i < chunk.xyz.size(); ++i) {
         const Eigen::Vector3d& p = chunk.xyz[i];
         int64_t col = 0, row = 0;

@@ -3,8 +3,10 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "core/cell_heights.h"
+#include "core/error.h"
 
 namespace sacfuse {
 namespace {
@@ -82,11 +84,21 @@ DsmWriteStats WriteDsmOfCloud(PointCloudFile& cloud, const CellWindow& extent, c
   return stats;
 }
 
-DsmWriteStats WriteDsmFromRawFiles(const std::vector<std::string>& raw_files, const CellWindow& extent,
-                                   const DsmRule& rule, const RasterFormat& format, const RasterOutput& output) {
-  const RasterFile mosaic = RasterFile::Mosaic(raw_files);
+DsmWriteStats WriteDsmFromRawFiles(const std::vector<std::string>& raw_files, const RawCellPatch& patch,
+                                   const CellWindow& extent, const DsmRule& rule, const RasterFormat& format,
+                                   const RasterOutput& output) {
+  if (raw_files.empty() && patch.empty()) throw Error("WriteDsmFromRawFiles: no raw cells");
+  std::optional<RasterFile> mosaic;
+  if (!raw_files.empty()) mosaic.emplace(RasterFile::Mosaic(raw_files));
   const RawCellReader read = [&](const CellWindow& w) {
-    std::vector<float> v = mosaic.ReadFloat(w);
+    std::vector<float> v = mosaic ? mosaic->ReadFloat(w) : std::vector<float>(w.size(), kNoCellValue);
+    for (int64_t col = w.col0; col < w.col0 + w.cols; ++col) {
+      for (auto it = patch.lower_bound({col, w.row0}); it != patch.end() && it->first.first == col &&
+                                                       it->first.second < w.row0 + w.rows;
+           ++it) {
+        v[w.Index(col, it->first.second)] = it->second;
+      }
+    }
     // Cells outside the product's extent have no value (the tiles' windows never leave it; kept explicit).
     for (int64_t r = 0; r < w.rows; ++r) {
       for (int64_t c = 0; c < w.cols; ++c) {

@@ -3,7 +3,10 @@
 // raster products (io/raster_assembly.h): the raw cells come from a cloud gridded in memory (`sacfuse dsm`, untiled
 // runs) or from the raw window files of a tiled run's tiles; either way the same blocks are finished from the same
 // raw cells, so the product does not depend on the tiling.
+#include <cstdint>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/cell_window.h"
@@ -41,9 +44,14 @@ DsmWriteStats WriteDsm(const std::vector<float>& raw, const CellWindow& extent, 
 DsmWriteStats WriteDsmOfCloud(PointCloudFile& cloud, const CellWindow& extent, const DsmRule& rule,
                               const RasterFormat& format, const RasterOutput& output, uint64_t max_points_in_memory,
                               CloudGrid* grid = nullptr);
-// From raw window files (DsmRawFormat) covering parts of `extent`; cells no file covers have no value. Error when
-// `raw_files` is empty.
-DsmWriteStats WriteDsmFromRawFiles(const std::vector<std::string>& raw_files, const CellWindow& extent,
-                                   const DsmRule& rule, const RasterFormat& format, const RasterOutput& output);
+// Raw values that replace the raw files' value of single cells, by global (col, row): a tiled run's cells that
+// got points from more than one tile, recomputed from all of them (jobs/dsm_product.h). NaN = no value.
+using RawCellPatch = std::map<std::pair<int64_t, int64_t>, float>;
+
+// From raw window files (DsmRawFormat) covering parts of `extent`, with `patch` applied; cells neither covers have
+// no value. Error when `raw_files` and `patch` are both empty.
+DsmWriteStats WriteDsmFromRawFiles(const std::vector<std::string>& raw_files, const RawCellPatch& patch,
+                                   const CellWindow& extent, const DsmRule& rule, const RasterFormat& format,
+                                   const RasterOutput& output);
 
 }  // namespace sacfuse

@@ -13,6 +13,9 @@
 
 namespace sacfuse {
 
+// A good number of points to Read at once (~1.6 MiB of coordinates).
+constexpr size_t kCloudReadChunkPoints = size_t{1} << 16;
+
 struct CloudChunk {
   std::vector<Eigen::Vector3d> xyz;     // metres, in the file's CRS (plus the shift)
   std::vector<uint8_t> classification;  // LAS classification; 0 (never classified) for PLY

@@ -2,13 +2,17 @@
 
 #include <cmath>
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include <spdlog/spdlog.h>
 
 #include "config/output_layout.h"
+#include "core/cell_heights.h"
 #include "core/crs.h"
 #include "core/error.h"
 #include "io/cloud_grid.h"
+#include "io/edge_points_file.h"
 #include "io/gdal_raster.h"
 #include "io/point_cloud_file.h"
 #include "io/raster_crs.h"
@@ -89,6 +93,48 @@ void RemoveOtherLayout(const JobConfig& config, const RasterOutput& output) {
   }
 }
 
+// The cells that got points from more than one tile (a tile's points fused beyond its core, its edge file, fall in
+// its neighbours' cells), each recomputed from all of its points: the edge points plus the points of the tile
+// owning the cell, read again from its LAZ (one pass per owning tile, keeping only those cells' heights).
+RawCellPatch SharedCellPatch(const std::string& tiles_dir, const TilePlan& plan, const DsmGrid& grid,
+                             const std::vector<std::string>& edge_files) {
+  const double cell = grid.extent.cell_m;
+  std::map<std::pair<int64_t, int64_t>, std::vector<float>> heights;  // by (col, row)
+  for (const std::string& path : edge_files) {
+    for (const Eigen::Vector3d& p : ReadEdgePointsFile(path)) {
+      const int64_t col = CellIndexOf(p.x(), cell), row = CellIndexOf(p.y(), cell);
+      if (grid.extent.Contains(col, row)) heights[{col, row}].push_back(static_cast<float>(p.z()));
+    }
+  }
+  std::set<std::string> owners;
+  for (const auto& entry : heights) {
+    const auto& [col, row] = entry.first;
+    owners.insert(TileGrid::Id(plan.grid.TileOf(CellEdge(col, cell) + 0.5 * cell, CellEdge(row, cell) + 0.5 * cell)));
+  }
+  for (const PlannedTile& tile : plan.tiles) {
+    if (!owners.count(tile.id)) continue;
+    const auto marker = ReadTileDoneMarker(tiles_dir, tile.id);
+    if (!marker || marker->points == 0) continue;
+    const CellWindow core = CellWindowOfHalfOpen(tile.core, cell).Intersection(grid.extent);
+    PointCloudFile cloud(TileLasPath(tiles_dir, tile.id));
+    CloudChunk chunk;
+    while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
+      for (const Eigen::Vector3d& p : chunk.xyz) {
+        if (!p.allFinite()) continue;
+        const int64_t col = CellIndexOf(p.x(), cell), row = CellIndexOf(p.y(), cell);
+        if (!core.Contains(col, row)) continue;
+        const auto it = heights.find({col, row});
+        if (it != heights.end()) it->second.push_back(static_cast<float>(p.z()));
+      }
+    }
+  }
+  RawCellPatch patch;
+  for (auto& [cr, z] : heights) patch.emplace(cr, CellValueOf(&z, grid.rule.quantile, grid.rule.min_points));
+  spdlog::info("dsm: {} cells got points from two tiles or more (recomputed from {} tiles' points)", patch.size(),
+               owners.size());
+  return patch;
+}
+
 }  // namespace
 
 double AutoDsmCell(double gsd_m, double tile_size_m) {
@@ -137,15 +183,37 @@ std::optional<DsmGrid> DsmGridOf(const JobConfig& config, const DepthBlock& inpu
   return grid;
 }
 
-bool DsmTileProduct::Make(const PlannedTile& tile, const std::string& las_path, const std::string& path) const {
-  if (las_path.empty()) return false;
-  const CellWindow window = CellWindowOfHalfOpen(tile.core, grid_.extent.cell_m).Intersection(grid_.extent);
-  if (window.empty()) return false;
+std::vector<std::string> DsmTileProduct::Make(const PlannedTile& tile, const std::string& las_path,
+                                              const std::string& tiles_dir) const {
+  if (las_path.empty()) return {};
+  const CellWindow core = CellWindowOfHalfOpen(tile.core, grid_.extent.cell_m).Intersection(grid_.extent);
+  CellHeights heights(core);
+  std::vector<Eigen::Vector3d> edge;  // fused beyond the core, inside the DSM's extent
   PointCloudFile cloud(las_path);
-  const CloudGrid raw = GridCloud(cloud, window, DsmCloudGridOptions(grid_.rule, cloud, grid_.max_points_in_memory));
-  if (raw.points_gridded == 0) return false;
-  WriteRasterFile(path, window, DsmRawFormat(grid_.crs_wkt), raw.values.data(), RasterLayout::kIntermediate);
-  return true;
+  CloudChunk chunk;
+  while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
+    for (const Eigen::Vector3d& p : chunk.xyz) {
+      if (!p.allFinite()) continue;
+      const int64_t col = CellIndexOf(p.x(), grid_.extent.cell_m), row = CellIndexOf(p.y(), grid_.extent.cell_m);
+      if (core.Contains(col, row)) {
+        heights.AddToCell(col, row, p.z());
+      } else if (grid_.extent.Contains(col, row)) {
+        edge.push_back(p);
+      }
+    }
+  }
+  std::vector<std::string> written;
+  if (heights.points() > 0) {
+    const std::vector<float> raw = heights.Reduce(grid_.rule.quantile, grid_.rule.min_points);
+    WriteRasterFile(TileProductPath(tiles_dir, tile.id, kRawSuffix), core, DsmRawFormat(grid_.crs_wkt), raw.data(),
+                    RasterLayout::kIntermediate);
+    written.push_back(kRawSuffix);
+  }
+  if (!edge.empty()) {
+    WriteEdgePointsFile(TileProductPath(tiles_dir, tile.id, kEdgeSuffix), edge);
+    written.push_back(kEdgeSuffix);
+  }
+  return written;
 }
 
 void RemoveDsmFiles(const JobConfig& config) {
@@ -169,27 +237,28 @@ RasterOutput DsmRasterOutput(const JobConfig& config, const CellWindow& extent) 
 
 DsmOutcome AssembleTiledDsm(const JobConfig& config, const TilePlan& plan, const DsmGrid& grid) {
   const std::string tiles_dir = TilesDir(config);
-  std::vector<std::string> raw_files;
-  const std::string suffix = DsmTileProduct(grid).suffix();
+  std::vector<std::string> raw_files, edge_files;
   Box2d points;  // the XY bounds of the tiles' points: the DSM's extent within the project area
   for (const std::string& id : TileIdsWithViews(plan)) {
     const auto marker = ReadTileDoneMarker(tiles_dir, id);
     if (!marker) throw Error(TileDonePath(tiles_dir, id) + ": done marker vanished before the DSM was assembled");
     for (const TileProductFile& p : marker->products) {
-      if (p.suffix != suffix) continue;
-      raw_files.push_back(TileProductPath(tiles_dir, id, suffix));
-      points.Extend(Box2d(marker->min[0], marker->min[1], marker->max[0], marker->max[1]));
+      if (p.suffix == DsmTileProduct::kRawSuffix) raw_files.push_back(TileProductPath(tiles_dir, id, p.suffix));
+      if (p.suffix == DsmTileProduct::kEdgeSuffix) edge_files.push_back(TileProductPath(tiles_dir, id, p.suffix));
     }
+    if (marker->points > 0) points.Extend(Box2d(marker->min[0], marker->min[1], marker->max[0], marker->max[1]));
   }
   const CellWindow extent = ExtentOfPoints(grid, points);
   const RasterOutput output = DsmRasterOutput(config, extent);
   RemoveOtherLayout(config, output);
-  if (raw_files.empty()) {
+  if (raw_files.empty() && edge_files.empty()) {
     spdlog::warn("dsm: no tile has points in the DSM's extent; no DSM written");
     RemoveDsmFiles(config);
     return {};
   }
-  return OutcomeOf(extent, WriteDsmFromRawFiles(raw_files, extent, grid.rule, DsmRasterFormat(grid.crs_wkt), output));
+  const RawCellPatch patch = SharedCellPatch(tiles_dir, plan, grid, edge_files);
+  return OutcomeOf(extent,
+                   WriteDsmFromRawFiles(raw_files, patch, extent, grid.rule, DsmRasterFormat(grid.crs_wkt), output));
 }
 
 DsmOutcome MakeUntiledDsm(const JobConfig& config, const DsmGrid& grid, const std::string& fused_las_path) {

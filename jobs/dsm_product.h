@@ -4,10 +4,11 @@
 //     run alike: `run`, `tile`, `merge`) on the global lattice (core/cell_window.h); the extent is the cells of the
 //     project area (the tile plan's area, the same for tiled and untiled runs of a block) that meet the bounds of
 //     the fused points.
-//   - Tiled runs: each tile grids the points of its LAZ (read back, so the cells see exactly the delivered
-//     coordinates) into its core's cells (DsmTileProduct, a tiles/tile_product.h written before the tile's done
-//     marker: DIR/tiles/<id>.dsm.tif, raw values); after the merge the raw windows are finished and assembled
-//     (AssembleTiledDsm).
+//   - Tiled runs: each tile grids the points of its LAZ into its core's cells and keeps the points it fused beyond
+//     its core (DsmTileProduct, a tiles/tile_product.h written before the tile's done marker); after the merge
+//     the cells that got points from more than one tile are recomputed from all of them (their owner's LAZ is read
+//     again for those cells only) and the raw windows are finished and assembled (AssembleTiledDsm): the DSM of
+//     a tiled run is the DSM of its merged cloud, cell for cell.
 //   - Untiled runs grid fused.las|laz once (MakeUntiledDsm).
 //   - Either way io/dsm_file.h finishes the same raw cells block by block into DIR/dsm.tif (or DIR/dsm.vrt over
 //     DIR/dsm/*.tif), so the DSM does not depend on the tiling.
@@ -49,12 +50,18 @@ struct DsmGrid {
 };
 std::optional<DsmGrid> DsmGridOf(const JobConfig& config, const DepthBlock& input, const Box2d& project_area);
 
-// The tiles' raw windows (DIR/tiles/<id>.dsm.tif).
+// What a tile makes for the DSM, from the points of its LAZ (read back, so the cells see exactly the delivered
+// coordinates): the points whose cell lies in its core's cells are reduced to the raw values of those cells,
+// DIR/tiles/<id>.dsm.tif (DsmRawFormat); the points it fused beyond its core (io/edge_points_file.h) go, as they
+// are, to DIR/tiles/<id>.dsm_edge.bin. Either file is written only when it has something.
 class DsmTileProduct : public TileProduct {
  public:
+  static constexpr const char* kRawSuffix = "dsm.tif";
+  static constexpr const char* kEdgeSuffix = "dsm_edge.bin";
   explicit DsmTileProduct(const DsmGrid& grid) : grid_(grid) {}
-  std::string suffix() const override { return "dsm.tif"; }
-  bool Make(const PlannedTile& tile, const std::string& las_path, const std::string& path) const override;
+  std::vector<std::string> suffixes() const override { return {kRawSuffix, kEdgeSuffix}; }
+  std::vector<std::string> Make(const PlannedTile& tile, const std::string& las_path,
+                                const std::string& tiles_dir) const override;
 
  private:
   DsmGrid grid_;
