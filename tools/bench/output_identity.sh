@@ -9,7 +9,8 @@
 #
 # WORK is a scratch folder (blocks are simulated there once and reused). Environment: SACFUSE_BIN (default
 # build/bin/sacfuse), METHODS (default: all six), BLOCKS (default "tiny small"), TILE_M (tile size of the tiled
-# runs, default 20 m: several tiles on both blocks). Not a test of the default suite (it takes minutes); run it
+# runs, default 20 m: several tiles on both blocks), CRS (the runs' `crs` key, default none; e.g. EPSG:25832
+# makes them write their DSM too, whose reading of the tiles must leave the clouds alone). Not a test of the default suite (it takes minutes); run it
 # before each commit of a refactor.
 set -euo pipefail
 mode=${1:?usage: output_identity.sh record|check WORK BASELINE.txt}
@@ -21,6 +22,8 @@ bin=${SACFUSE_BIN:-$root/build/bin/sacfuse}
 methods=${METHODS:-"sac union consistency disparity_normal tsdf multiray"}
 blocks=${BLOCKS:-"tiny small"}
 tile_m=${TILE_M:-20}
+crs_line=""
+[ -n "${CRS:-}" ] && crs_line="crs: \"$CRS\""
 mkdir -p "$work"
 work=$(cd "$work" && pwd)
 # Binaries that know output.format (las | laz) are asked for LAS; older ones write only fused.las.
@@ -56,6 +59,7 @@ for block in $blocks; do
         cfg=$work/runs/$name.yaml
         mkdir -p "$work/runs"
         cat >"$cfg" <<EOF
+$crs_line
 input: {format: colmap, path: $dir}
 output: {dir: $out$format_key}
 fusion: {method: $method}
