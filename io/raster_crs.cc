@@ -1,6 +1,5 @@
 #include "io/raster_crs.h"
 
-
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
 
@@ -8,12 +7,36 @@
 #include "io/wkt1.h"
 
 namespace sacfuse {
+namespace {
 
-std::string RasterCrsWkt(const ProjectCrs& crs) { return ProjectCrsWkt1(crs); }
+// A projected or geographic CRS with an ellipsoidal height axis (a 3D CRS, not a compound one) as its horizontal
+// CRS: GeoTIFF has no keys for ellipsoidal heights, and GDAL would write such a CRS as an ESRI PE string whose
+// text varies with the state of PROJ's database queries in the process (datum vs datum ensemble), so the same
+// raster would not be the same bytes. Any other CRS is returned as it is.
+std::string HorizontalOfEllipsoidal3d(const std::string& wkt) {
+  if (wkt.empty()) return wkt;
+  OGRSpatialReference srs;
+  if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return wkt;
+  if (srs.IsCompound() || srs.GetAxesCount() != 3 || !(srs.IsProjected() || srs.IsGeographic())) return wkt;
+  if (srs.DemoteTo2D(nullptr) != OGRERR_NONE) return wkt;
+  char* out = nullptr;
+  const char* options[] = {"FORMAT=WKT1_GDAL", nullptr};
+  if (srs.exportToWkt(&out, options) != OGRERR_NONE || out == nullptr) {
+    CPLFree(out);
+    return wkt;
+  }
+  std::string horizontal = out;
+  CPLFree(out);
+  return horizontal;
+}
+
+}  // namespace
+
+std::string RasterCrsWkt(const ProjectCrs& crs) { return HorizontalOfEllipsoidal3d(ProjectCrsWkt1(crs)); }
 
 std::string RasterCrsWktOfLas(const LasHeader& header) {
   const LasCrsInfo info = ReadLasCrs(header);
-  if (!info.wkt.empty()) return info.wkt;
+  if (!info.wkt.empty()) return HorizontalOfEllipsoidal3d(info.wkt);
   if (info.epsg == 0) return "";
   OGRSpatialReference srs;
   if (srs.importFromEPSG(info.epsg) != OGRERR_NONE) return "";

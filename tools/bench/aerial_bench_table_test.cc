@@ -83,14 +83,32 @@ TEST(AerialBenchTableTest, MarkdownTableHasEveryRowAndTheBlockLine) {
   rows[1].result.reused = true;
   rows.push_back(Row("b", "sacfuse", 0.5, 0.5, 1));
   rows.back().result.status = "failed";
+  // DSM scores on a's sacfuse and TSDF rows (score_dsm.py of the DSMs, and of the clouds by its own p90 rule).
+  const auto dsm = [](double nmad, double completeness) {
+    AerialDsmScore d;
+    d.nmad_m = nmad;
+    d.completeness = completeness;
+    d.median_m = 0.0;
+    d.rmse_m = 1.0;
+    return d;
+  };
+  rows[0].dsm = dsm(0.138, 0.9992);
+  rows[0].dsm_p90 = dsm(0.156, 0.9975);
+  rows[1].dsm = dsm(0.171, 0.9975);
   const std::string md = FormatAerialMarkdown(rows, SummariseAerial(rows));
-  EXPECT_NE(md.find("| block | method | F1 2×GSD | F1 5×GSD | points in mask /m² | × TSDF's points | above top % | "
-                    "wall s | peak RSS MiB |"),
+  EXPECT_NE(md.find("| block | method | F1 2×GSD | F1 5×GSD | DSM NMAD m | DSM compl. % | p90 NMAD m | p90 compl. % | "
+                    "points in mask /m² | × TSDF's points | above top % | wall s | peak RSS MiB |"),
             std::string::npos)
       << md;
-  EXPECT_NE(md.find("| a | **sacfuse** | 0.9700 | 0.9950 | 20.0 | 0.50 | 1.33 | 12.3 | 812 |"), std::string::npos)
+  EXPECT_NE(md.find("| a | **sacfuse** | 0.9700 | 0.9950 | 0.138 | 99.92 | 0.156 | 99.75 | 20.0 | 0.50 | 1.33 | 12.3 | "
+                    "812 |"),
+            std::string::npos)
       << md;
-  EXPECT_NE(md.find("| a | Open3D TSDF ↺ | 0.9600 | 0.9960 | 40.0 | 1.00 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| a | Open3D TSDF ↺ | 0.9600 | 0.9960 | 0.171 | 99.75 |  |  | 40.0 | 1.00 |"), std::string::npos)
+      << md;
+  EXPECT_NE(md.find("DSM: NMAD 0.138 m (best peer 0.171), completeness 99.92 % (best peer 99.75): ahead on both."),
+            std::string::npos)
+      << md;
   EXPECT_NE(md.find("| a | oracle | 0.9800 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| b | **sacfuse** | failed |"), std::string::npos) << md;
   EXPECT_NE(md.find("- a: SAC rank 1 of 3 at 2×GSD, 3 of 3 at 5×GSD; half-way to the oracle at 2×GSD: reached "

@@ -29,6 +29,10 @@ BenchRow Row(const std::string& section, const std::string& name, double f1_2, d
   m.redundancy = 7.8123;
   m.wall_s = 9.04;
   m.peak_rss_mib = 384.4;
+  if (name == "sac") {  // sacfuse rows score their DSM (eval.json "dsm"); the others have none
+    m.dsm_nmad_m = 0.1384;
+    m.dsm_completeness_pct = 99.916;
+  }
   return r;
 }
 
@@ -80,8 +84,9 @@ TEST(QualityBenchFormatTest, MarkdownHasHeaderTablesSummariesAndFailures) {
         "COLMAP: not run (--colmap off)", "skipped block zurich: LiDAR file not found: /nowhere/lastools/zurich.las",
         "## Error scale 1", "### city (procedural city, preset small, seed 7; block `city-small-seed7-e1`",
         "| method | F1 2×GSD % | F1 5×GSD % | accuracy 2× % | completeness 2× % | mean abs dist m | points | "
-        "redundancy | wall s | peak RSS MiB |",
-        "| **sac** | 66.55 | 99.23 | 50.74 | 96.66 | 0.123 | 10,165,096 | 7.81 | 9.0 | 384 |",
+        "redundancy | DSM NMAD m | DSM compl. % | wall s | peak RSS MiB |",
+        "| **sac** | 66.55 | 99.23 | 50.74 | 96.66 | 0.123 | 10,165,096 | 7.81 | 0.138 | 99.92 | 9.0 | 384 |",
+        "| tsdf ↺ | 83.59 | 98.44 | 50.74 | 96.66 | 0.123 | 12,305,632 | 7.81 | – | – | 9.0 | 384 |",
         "| tsdf ↺ | 83.59 |", "| ceiling | 99.80 | 100.00 |",
         "SAC: rank 2 of 3 at 2×GSD, 1 of 3 at 5×GSD; gap closed -105.1 % (best other: tsdf 83.59, ceiling 99.80, "
         "SAC 66.55)",
