@@ -11,6 +11,7 @@
 
 #include "config/config_schema.h"
 #include "config/option_table.h"
+#include "config/version.h"
 #include "core/crs.h"
 #include "core/error.h"
 #include "io/input_file.h"
@@ -99,6 +100,31 @@ std::vector<OptionError> JobConfigErrors(const JobConfig& c) {
   return errors;
 }
 
+// `text` as one YAML comment line (line breaks of a path or --set value shown as \\n, so they cannot end it).
+std::string CommentLine(const std::string& text) {
+  std::string line = "# ";
+  for (const char c : text) line += c == '\n' ? "\\n" : c == '\r' ? "\\r" : std::string(1, c);
+  return line + "\n";
+}
+
+// The path keys, resolved against the config file's folder when given in the file and against the current
+// directory when given on the command line (ConfigOverride), as a user typing a path there means.
+std::vector<std::pair<const char*, std::string*>> PathFields(JobConfig* c) {
+  return {{"input.path", &c->input.path},
+          {"input.cameras", &c->input.cameras},
+          {"output.dir", &c->output.dir},
+          {"evaluation.reference", &c->evaluation.reference},
+          {"evaluation.mask", &c->evaluation.mask},
+          {"fusion.superpixel_cache_dir", &c->fusion.superpixel_cache_dir}};
+}
+
+bool Overridden(const std::vector<ConfigOverride>& overrides, const std::string& key) {
+  for (const ConfigOverride& o : overrides) {
+    if (o.key == key) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void ValidateJobConfig(const JobConfig& c) {
@@ -106,29 +132,29 @@ void ValidateJobConfig(const JobConfig& c) {
   if (!errors.empty()) throw ConfigError(OptionErrorsMessage(errors, c.source_file.empty() ? "config" : c.source_file));
 }
 
-JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
+JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir,
+                         const std::vector<ConfigOverride>& overrides) {
   JobConfig config;
   config.source_file = source_name;
+  config.overrides = overrides;
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   }
-  std::map<std::string, int> key_lines;
-  MakeOptionTable(&config).Parse(root, source_name, &key_lines);
-  config.input.path = ResolvePath(config.input.path, base_dir);
-  config.input.cameras = ResolvePath(config.input.cameras, base_dir);
-  config.output.dir = ResolvePath(config.output.dir, base_dir);
-  config.evaluation.reference = ResolvePath(config.evaluation.reference, base_dir);
-  config.evaluation.mask = ResolvePath(config.evaluation.mask, base_dir);
-  config.fusion.superpixel_cache_dir = ResolvePath(config.fusion.superpixel_cache_dir, base_dir);
+  KeyPlaces key_places;
+  MakeOptionTable(&config).Parse(root, source_name, overrides, &key_places);
+  const std::string cwd = overrides.empty() ? "" : std::filesystem::current_path().string();
+  for (const auto& [key, field] : PathFields(&config)) {
+    *field = ResolvePath(*field, Overridden(overrides, key) ? cwd : base_dir);
+  }
   const std::vector<OptionError> errors = JobConfigErrors(config);
-  if (!errors.empty()) throw ConfigError(OptionErrorsMessage(errors, source_name, key_lines));
+  if (!errors.empty()) throw ConfigError(OptionErrorsMessage(errors, source_name, key_places));
   return config;
 }
 
-JobConfig LoadJobConfig(const std::string& path) {
+JobConfig LoadJobConfig(const std::string& path, const std::vector<ConfigOverride>& overrides) {
   std::ifstream in;
   try {
     in = OpenInputStream(path, "config file");
@@ -138,16 +164,25 @@ JobConfig LoadJobConfig(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   const auto base = std::filesystem::absolute(path).parent_path().string();
-  return ParseJobConfig(text.str(), path, base);
+  return ParseJobConfig(text.str(), path, base, overrides);
 }
 
 std::string DumpJobConfig(const JobConfig& config, bool with_comments) {
   JobConfig copy = config;
   std::string header;
   if (with_comments) {
-    header =
-        "# sacfuse run configuration. Every key is optional except input.path; the values shown are the defaults.\n"
-        "# Relative paths are resolved against the folder of this file.\n";
+    std::string origin = "The defaults";
+    if (!config.source_file.empty()) {
+      origin = "The configuration of " + config.source_file;
+      for (const ConfigOverride& o : config.overrides) {
+        origin += (&o == &config.overrides.front() ? " with " : " ") + o.Describe();
+      }
+      origin += ", every key as a run uses it";
+    }
+    header = CommentLine("sacfuse run configuration, written by " + FullVersionString() + ".") +
+             CommentLine(origin + ".") +
+             CommentLine("Every key is optional except input.path. Relative paths are resolved against the folder "
+                         "of this file.");
   }
   return header + MakeOptionTable(&copy).Dump(with_comments);
 }

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/config_override.h"
 #include "config/fusion_method_kind.h"
 #include "core/consistency_fusion.h"
 #include "core/coregistration.h"
@@ -83,17 +84,21 @@ struct JobConfig {
   EvaluationOptions evaluation;
   LogOptions log;
   std::string source_file;  // the YAML file this came from ("" for defaults)
+  std::vector<ConfigOverride> overrides;  // the keys the command line set on top of it, in order
 };
 
-// Reads, type-checks and validates a YAML config. Unknown keys, wrong types and out-of-range values throw
-// ConfigError naming the file, line, key, value and rule (all problems at once). Relative paths are resolved
-// against the config file's folder.
-JobConfig LoadJobConfig(const std::string& path);
+// Reads, type-checks and validates a YAML config, with `overrides` (the command line's --set ...) applied on top
+// before validation. Unknown keys, wrong types and out-of-range values throw ConfigError naming the file, line (or
+// option), key, value and rule (all problems at once). Relative paths are resolved against the config file's
+// folder, those of overrides against the current directory.
+JobConfig LoadJobConfig(const std::string& path, const std::vector<ConfigOverride>& overrides = {});
 // Parses YAML text (for tests); `source_name` appears in messages. Paths are resolved against `base_dir`.
-JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir);
+JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir,
+                         const std::vector<ConfigOverride>& overrides = {});
 // Validation of values alone (after parsing or for configs built in code).
 void ValidateJobConfig(const JobConfig& config);
-// The config as YAML. With comments: every key documented with its default and unit (--print-defaults).
+// The config as YAML. With comments: a header naming the sacfuse version, the source file and the overrides, and
+// every key documented with its unit and rule (--print-defaults, sacfuse.effective.yaml).
 std::string DumpJobConfig(const JobConfig& config, bool with_comments);
 // Every key of the config with its value as YAML text ("fusion.tau_m" -> "2"), in schema order.
 std::vector<std::pair<std::string, std::string>> JobConfigValues(const JobConfig& config);

@@ -85,7 +85,7 @@ TEST(OptionTableTest, RangeErrorsAreStructured) {
   // Formatted once, in the style of every config message.
   EXPECT_EQ(FormatOptionError(errors[2]), "fusion.tau_m = 0: must be > 0");
   EXPECT_EQ(FormatOptionError(errors[0]), "input.path is empty: a value is required");
-  EXPECT_EQ(OptionErrorsMessage({errors[2]}, "job.yaml", {{"fusion.tau_m", 7}}),
+  EXPECT_EQ(OptionErrorsMessage({errors[2]}, "job.yaml", {{"fusion.tau_m", "job.yaml:7: "}}),
             "job.yaml: invalid configuration\n  job.yaml:7: fusion.tau_m = 0: must be > 0");
   // Configs built in code reach the same rules through ValidateJobConfig.
   c.input.path = "/ws";

@@ -2,12 +2,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/version.h"
 #include "io/atomic_file.h"
 
 namespace sacfuse {
 
 std::string EvalReportToJson(const EvalReport& r, int indent) {
   nlohmann::json j;
+  j["version"] = FullVersionString();
   nlohmann::json scores = nlohmann::json::array();
   for (const ThresholdScore& s : r.scores) {
     scores.push_back({{"tau_m", s.tau_m},

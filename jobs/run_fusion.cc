@@ -89,7 +89,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
   for (const auto& v : s.views) {
     views.push_back({{"name", v.name}, {"input_pixels", v.input_pixels}, {"output_points", v.output_points}});
   }
-  nlohmann::json j = {{"version", VersionString()},
+  nlohmann::json j = {{"version", FullVersionString()},
                             {"config", config.source_file},
                             {"method", s.method},
                             {"fused_las", s.las_path},

@@ -6,6 +6,7 @@
 #include <tuple>
 #include <utility>
 
+#include "config/version.h"
 #include "report/report_histogram.h"
 #include "report/report_text.h"
 #include "report/report_tile_map.h"
@@ -72,8 +73,9 @@ std::string Header(const ReportData& d) {
   std::ostringstream s;
   s << "<header><h1>sacfuse run report</h1><div class='sub'>" << EscapeHtml(d.output_dir);
   if (!d.run.method.empty()) s << " &middot; method <b>" << EscapeHtml(d.run.method) << "</b>";
-  if (!d.run.version.empty()) s << " &middot; " << EscapeHtml(d.run.version);
-  s << " &middot; report written " << EscapeHtml(d.generated_at) << "</div></header>\n";
+  if (!d.run.version.empty()) s << " &middot; run by " << EscapeHtml(d.run.version);
+  s << " &middot; report written " << EscapeHtml(d.generated_at) << " by " << EscapeHtml(FullVersionString())
+    << "</div></header>\n";
   return s.str();
 }
 

@@ -103,7 +103,7 @@ std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const st
                      {"memory_bytes", t.memory_bytes}});
   }
   const Box2d& area = plan.grid.area();
-  const nlohmann::json j = {{"version", VersionString()},
+  const nlohmann::json j = {{"version", FullVersionString()},
                             {"tile_size_m", plan.options.tile_size_m},
                             {"halo_m", plan.options.halo_m},
                             {"window_margin_px", plan.options.window_margin_px},

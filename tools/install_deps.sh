@@ -51,8 +51,8 @@ fi
 if [ "$MODE" = build ]; then exit 0; fi
 
 # Optional: benchmarks (tools/bench, `sacfuse colmap-fusion`, tools/bench/compare_colmap.sh): COLMAP's
-# stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports; fuzzing
-# (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes. Building and the test suite do not need them
+# stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports; the package check
+# (tools/check_deb.sh): debootstrap; fuzzing (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes. Building and the test suite do not need them
 # (the COLMAP test skips without it; tools/sanitize.sh uses the default compiler's sanitizers), so a package the
 # archive lacks (colmap is in Debian main for amd64/arm64 but not on every architecture or derivative) or a failed
 # install only warns.
@@ -60,7 +60,8 @@ OPTIONAL_PKGS=(
   colmap                   # COLMAP 3.8 (CPU build): stereo_fusion, the comparison of issue 4
   time                     # /usr/bin/time -v: wall time and peak RSS of `sacfuse run` in compare_colmap.sh
   jq                       # reading run_report.json / eval.json in compare_colmap.sh
-  python3-yaml             # tools/bench/config_with_output.sh (compare_colmap.sh, ab_time.sh, stage_ladder.sh)
+  debootstrap              # tools/check_deb.sh: a fresh Debian 12 root to install the .deb into (tools/package_deb.sh
+                           # needs only dpkg-dev, which build-essential brings)
   clang                    # tools/fuzz.sh: the libFuzzer targets of tests/fuzz are built with clang
   libclang-rt-14-dev       # tools/fuzz.sh: libFuzzer, ASan and UBSan runtimes of clang 14 (Debian 12)
   python3-numpy python3-scipy python3-opencv python3-open3d  # sacfuse bench --aerial-bench: ../shared/aerial-bench's
