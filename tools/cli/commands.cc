@@ -62,9 +62,9 @@ int Main(int argc, char** argv) {
   AddSimulateCommand(app, &exit_code);
   AddEvalCommand(app, &exit_code);
   AddValidateCommand(app, &exit_code);
+  AddConvertCommand(app, &exit_code);
   AddVersionCommand(app, &exit_code);
   app.group(kDevelopmentGroup);
-  AddConvertCommand(app, &exit_code);
   AddBenchCommand(app, &exit_code);
   AddColmapFusionCommand(app, &exit_code);
   AddGenDocsCommand(app, &exit_code);
