@@ -1,7 +1,7 @@
 # `cmake --install build` (and the Debian package, tools/package_deb.sh): the binary, its man page and the user
 # documentation, in the GNUInstallDirs places (prefix /usr/local by default, /usr for the package):
-#   bin/sacfuse, share/man/man1/sacfuse.1.gz, share/doc/sacfuse/{README.md, LICENSE, CHANGELOG.md, CITATION.cff,
-#   docs/}. Nothing else is installed: the libraries are static and internal.
+#   bin/sacfuse, share/man/man1/sacfuse.1.gz, share/doc/sacfuse/{README.md, LICENSE (also as copyright),
+#   CHANGELOG.md, CITATION.cff, docs/}. Nothing else is installed: the libraries are static and internal.
 include(GNUInstallDirs)
 install(TARGETS sacfuse RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(FILES ${SACFUSE_MAN_PAGE} DESTINATION ${CMAKE_INSTALL_MANDIR}/man1)
@@ -12,6 +12,8 @@ foreach(f ${doc_files})
   endif()
 endforeach()
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/docs/ DESTINATION ${CMAKE_INSTALL_DOCDIR}/docs)
+# Debian policy: the licence as /usr/share/doc/<package>/copyright.
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE DESTINATION ${CMAKE_INSTALL_DOCDIR} RENAME copyright)
 
 # CPack: the Debian package sacfuse_<version>_<arch>.deb (tools/package_deb.sh). Its dependencies are the shared
 # libraries the binary links, found by dpkg-shlibdeps; the binary is stripped.

@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "config/output_layout.h"
+#include "config/version.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/view_identity.h"
@@ -83,7 +84,7 @@ nlohmann::json ResultJson(const DepthBlock& input, const CoregistrationResult& r
     iterations.push_back({{"residuals", it.residuals}, {"weighted_rms_m", it.weighted_rms_m},
                           {"median_step_deg", it.median_step_deg}, {"median_step_m", it.median_step_m}});
   }
-  return {{"format", kFormat}, {"inputs_digest", digest}, {"options", OptionsJson(config)},
+  return {{"format", kFormat}, {"version", FullVersionString()}, {"inputs_digest", digest}, {"options", OptionsJson(config)},
           {"decimation", decimation}, {"pairs", r.pairs}, {"summary", r.summary}, {"iterations", iterations},
           {"views", views}};
 }

@@ -75,7 +75,7 @@ in_root() { chroot "$root" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HO
 step "apt-get update" in_root apt-get update -qq || exit 1
 step "apt install ./$name" in_root sh -c "cd /tmp && apt-get install -y -qq --no-install-recommends ./$name" || exit 1
 echo "      installed: $(in_root dpkg-query -W -f='${Package} ${Version}, ${Installed-Size} KiB' sacfuse); root now" \
-  "$(du -sm "$root" | cut -f1) MiB"
+  "$(du -smx "$root" | cut -f1) MiB"
 step "sacfuse --version" in_root sacfuse --version && echo "      $(in_root sacfuse --version)"
 step "man page and docs installed" in_root sh -c 'test -s /usr/share/man/man1/sacfuse.1.gz &&
   test -s /usr/share/doc/sacfuse/README.md && test -s /usr/share/doc/sacfuse/LICENSE &&
