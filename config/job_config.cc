@@ -12,9 +12,10 @@
 #include "config/config_schema.h"
 #include "config/option_table.h"
 #include "config/version.h"
-#include "core/crs.h"
 #include "core/error.h"
+#include "io/crs.h"
 #include "io/input_file.h"
+#include "io/las_crs.h"
 
 namespace sacfuse {
 namespace {
@@ -37,12 +38,17 @@ bool IsAllowedLasScale(double scale) {
 
 std::string Number(double v) { return OptionValueText(v); }
 
-// input.cameras and input.depth_kind belong to format rasters.
+// input.cameras, input.depth_kind and input.cameras_crs belong to format rasters.
 void CheckRasterInputKeys(const InputOptions& in, std::vector<OptionError>* errors) {
   if (in.format != "rasters") {
     if (!in.cameras.empty()) errors->push_back({"input.cameras", in.cameras, "only read by input.format: rasters"});
     if (in.depth_kind != "z") {
       errors->push_back({"input.depth_kind", in.depth_kind, "only read by input.format: rasters"});
+    }
+    if (!in.cameras_crs.empty()) {
+      errors->push_back({"input.cameras_crs", in.cameras_crs,
+                         "only read by input.format: rasters (COLMAP and OpenMVS workspaces are in crs, shifted by "
+                         "input.origin_m)"});
     }
     return;
   }
@@ -57,13 +63,36 @@ void CheckRasterInputKeys(const InputOptions& in, std::vector<OptionError>* erro
 // The rules a key's range cannot say: between keys, or on a key's form (CRS, LAS scale, camera file). Like the
 // table's ranges, only for the keys of the method in use.
 void CheckCrossKeyRules(const JobConfig& c, std::vector<OptionError>* errors) {
-  try {
-    ParseProjectCrs(c.crs);
-  } catch (const Error& e) {
+  // A CRS's message starts with "<key> \"<text>\": "; the error repeats key and value itself.
+  auto crs_error = [&](const std::string& key, const std::string& text, const Error& e) {
     std::string why = e.what();
-    const std::string prefix = "crs \"" + c.crs + "\": ";
+    const std::string prefix = key + " \"" + text + "\": ";
     if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
-    errors->push_back({"crs", "\"" + c.crs + "\"", why});
+    errors->push_back({key, "\"" + text + "\"", why});
+  };
+  try {
+    const Crs crs = ParseProjectCrs(c.crs);
+    const int minor = c.output.las_version == "1.2" ? 2 : 4;
+    const std::string problem = LasCrsProblem(crs, minor);
+    if (!problem.empty()) {
+      errors->push_back({"output.las_version", c.output.las_version,
+                         problem + ": use output.las_version 1.4 (WKT) for crs \"" + c.crs + "\""});
+    }
+  } catch (const Error& e) {
+    crs_error("crs", c.crs, e);
+  }
+  try {
+    ParseInputCrs(c.input.cameras_crs);
+    if (!c.input.cameras_crs.empty() && c.crs.empty()) {
+      errors->push_back({"input.cameras_crs", "\"" + c.input.cameras_crs + "\"",
+                         "positions in another CRS need the project CRS to transform them into: set crs"});
+    }
+  } catch (const Error& e) {
+    crs_error("input.cameras_crs", c.input.cameras_crs, e);
+  }
+  if (c.input.origin_m.size() != 3) {
+    errors->push_back({"input.origin_m", std::to_string(c.input.origin_m.size()) + " numbers",
+                       "must be [east, north, height]: 3 numbers, metres"});
   }
   CheckRasterInputKeys(c.input, errors);
   if (!IsAllowedLasScale(c.output.scale_m)) {

@@ -28,6 +28,13 @@ struct InputOptions {
   // config file; "" = the cameras.yaml, cameras.yml or cameras.csv in `path`.
   std::string cameras;
   std::string depth_kind = "z";         // format rasters: z (along the optical axis) | range (along the ray), metres
+  // The input's coordinates are project-CRS coordinates minus this point (east, north, height; metres): a
+  // workspace shifted to a round local origin (COLMAP computes in float32). World = input + origin_m, in doubles.
+  // Applies to COLMAP and OpenMVS poses and to camera-file x_m/y_m/z_m (in input.cameras_crs when set).
+  std::vector<double> origin_m = {0.0, 0.0, 0.0};
+  // format rasters: the CRS of the camera file's positions (io/crs.h; x_m/y_m/z_m, or the datum of lat/lon/h);
+  // "" = the project CRS. Positions are transformed into `crs` through PROJ (io/camera_placement.h).
+  std::string cameras_crs;
 };
 
 struct OutputOptions {
@@ -71,9 +78,9 @@ struct LogOptions {
 };
 
 struct JobConfig {
-  // Project CRS of the world coordinates (core/crs.h): "" = not georeferenced (local metres, no CRS in the LAS),
-  // "EPSG:326zz" / "EPSG:327zz" (WGS 84 / UTM zone zz N / S), "EPSG:258zz" (ETRS89 / UTM zone zz N, 28..38),
-  // "ENU:lat,lon,h" (local east-north-up frame at that origin: degrees, degrees, metres ellipsoidal).
+  // Project CRS of the world coordinates (io/crs.h, through PROJ): "" = not georeferenced (local metres, no CRS in
+  // the LAS), any metric projected CRS PROJ knows ("EPSG:25832"), a compound one with orthometric heights
+  // ("EPSG:2154+5720"), WKT1/WKT2/PROJJSON, or "ENU:lat,lon,h" (local east-north-up frame at that origin).
   std::string crs;
   InputOptions input;
   OutputOptions output;

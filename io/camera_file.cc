@@ -476,4 +476,8 @@ CameraFile ReadCameraFile(const std::string& path) {
   return format == CameraFileFormat::kYaml ? ReadYaml(path) : ReadCsv(path);
 }
 
+std::string CameraFileViewText(const CameraFileView& v) {
+  return (v.line > 0 ? "line " + std::to_string(v.line) + ": " : std::string()) + "view \"" + v.image + "\"";
+}
+
 }  // namespace sacfuse

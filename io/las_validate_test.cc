@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/crs.h"
+#include "io/crs.h"
 #include "io/las_crs.h"
 #include "io/las_format.h"
 #include "io/las_reader.h"

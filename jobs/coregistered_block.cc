@@ -128,15 +128,6 @@ bool ReadCurrent(const std::string& path, const DepthBlock& input, const std::st
 
 }  // namespace
 
-CoregisteredBlock::CoregisteredBlock(std::unique_ptr<DepthBlock> inner, const std::vector<Rigid3d>& cam_from_world)
-    : inner_(std::move(inner)), views_(inner_->views()) {
-  if (cam_from_world.size() != views_.size()) {
-    throw Error("co-registration: " + std::to_string(cam_from_world.size()) + " poses for " +
-                std::to_string(views_.size()) + " views");
-  }
-  for (size_t i = 0; i < views_.size(); ++i) views_[i].cam_from_world = cam_from_world[i];
-}
-
 std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::unique_ptr<DepthBlock> input,
                                                   CoregistrationOutcome* outcome) {
   CoregistrationOutcome local;
@@ -175,7 +166,7 @@ std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::
                "{:.3f} / max {:.3f} m, residual rms median {:.3f} -> {:.3f} m ({})",
                poses.size(), out.reused ? "reused" : "computed", out.seconds, m.median_rotation_deg,
                m.max_rotation_deg, m.median_shift_m, m.max_shift_m, m.median_rms_before_m, m.median_rms_after_m, path);
-  return std::make_unique<CoregisteredBlock>(std::move(input), poses);
+  return std::make_unique<ReposedBlock>(std::move(input), poses);
 }
 
 }  // namespace sacfuse

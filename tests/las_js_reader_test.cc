@@ -22,7 +22,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "core/crs.h"
+#include "io/crs.h"
+#include "io/crs_wkt.h"
 #include "io/las_copy.h"
 #include "io/las_crs.h"
 #include "io/las_reader.h"
@@ -145,7 +146,7 @@ Comparison CompareLoader(const json& seen, const fs::path& las, const std::vecto
 }
 
 // Point source IDs and CRS records as the script read them.
-void CompareRaw(const json& raw, const fs::path& las, const ProjectCrs& crs) {
+void CompareRaw(const json& raw, const fs::path& las, const Crs& crs) {
   LasHeader h;
   const std::vector<LasPoint> ours = ReadAllLasPoints(las.string(), &h);
   const json& ids = raw.at("point_source_id");
@@ -162,20 +163,20 @@ void CompareRaw(const json& raw, const fs::path& las, const ProjectCrs& crs) {
     EXPECT_EQ(wkt_bit, crs.georeferenced());
     if (crs.georeferenced()) {
       ASSERT_TRUE(raw.at("wkt").is_string());
-      EXPECT_EQ(raw.at("wkt").get<std::string>(), ProjectCrsWkt1(crs));
-      EXPECT_EQ(WktHorizontalEpsg(ParseWkt1(raw.at("wkt").get<std::string>())), crs.epsg);
+      EXPECT_EQ(raw.at("wkt").get<std::string>(), ProjectCrsWkt(crs.text(), CrsWktDialect::kLas14));
+      EXPECT_EQ(WktHorizontalEpsg(ParseWkt1(raw.at("wkt").get<std::string>())), crs.horizontal_epsg());
     }
     EXPECT_TRUE(raw.at("geokeys").is_null());
   } else {
     EXPECT_FALSE(wkt_bit);
     EXPECT_TRUE(raw.at("wkt").is_null());
-    if (crs.kind == ProjectCrs::Kind::kUtm) {
+    if (crs.kind() == Crs::Kind::kProjected) {
       const std::vector<int> keys = raw.at("geokeys").get<std::vector<int>>();
       bool found = false;
       for (size_t k = 4; k + 3 < keys.size(); k += 4) {
-        found = found || (keys[k] == 3072 && keys[k + 1] == 0 && keys[k + 3] == crs.epsg);
+        found = found || (keys[k] == 3072 && keys[k + 1] == 0 && keys[k + 3] == crs.horizontal_epsg());
       }
-      EXPECT_TRUE(found) << "no ProjectedCSTypeGeoKey = " << crs.epsg;
+      EXPECT_TRUE(found) << "no ProjectedCSTypeGeoKey = " << crs.horizontal_epsg();
       EXPECT_NE(raw.at("geo_ascii").get<std::string>().find(crs.Name()), std::string::npos);
     }
   }
@@ -203,7 +204,7 @@ std::vector<LasPoint> KnownPoints(size_t n) {
 TEST(LasJsReaderTest, ReadsOurWriterFilesExactly) {
   REQUIRE_READER();
   TempDir dir;
-  const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
+  const Crs crs = ParseProjectCrs("EPSG:25832");
   const std::vector<LasPoint> pts = KnownPoints(1500);
   for (int minor : {2, 4}) {
     SCOPED_TRACE("LAS 1." + std::to_string(minor));
@@ -391,7 +392,7 @@ class LasJsRunTest : public testing::TinyBlockSuite {
                         << extra;
     return path;
   }
-  static void CheckFile(const fs::path& las, const ProjectCrs& crs, int minor) {
+  static void CheckFile(const fs::path& las, const Crs& crs, int minor) {
     SCOPED_TRACE(las.string());
     LasHeader h;
     {
@@ -399,7 +400,7 @@ class LasJsRunTest : public testing::TinyBlockSuite {
       h = reader.header();
     }
     EXPECT_EQ(h.version_minor, minor);
-    EXPECT_EQ(ReadLasCrs(h).epsg, crs.epsg);
+    EXPECT_EQ(ReadLasCrs(h).epsg, crs.horizontal_epsg());
     const json seen = ReadWithLoadersGl(las, 20000);
     const Comparison c = CompareLoader(seen.at("loaders").at("laz-rs"), las);
     if (minor == 2) CompareLoader(seen.at("loaders").at("laz-perf"), las);
@@ -416,7 +417,7 @@ TEST_F(LasJsRunTest, TiledLas14RunWithCrsIsReadByLoadersGl) {
   std::string out;
   const fs::path config = WriteConfig("run14", ", format: las", "tiling: {tile_size_m: 30}\n");
   ASSERT_EQ(RunCommand(SacfuseBinary() + " run " + ShellQuote(config), &out), 0) << out;
-  const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
+  const Crs crs = ParseProjectCrs("EPSG:25832");
   CheckFile(Out("run14") / "fused.las", crs, 4);
   size_t tiles = 0;
   // Tile files are LAZ: their LAS twin (our reader's point-for-point copy) is read as fused.las is, and laz-perf

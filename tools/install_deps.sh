@@ -20,7 +20,8 @@ PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev            # linear algebra, camera geometry
   libopencv-dev libopencv-contrib-dev   # images; ximgproc (SLIC) lives in contrib
-  libgeographiclib-dev     # UTM / geodetic conversions
+  libproj-dev proj-data    # PROJ: the project CRS, geodetic conversions, geoid grids, WKT (io/crs); proj-data holds
+                           # proj.db, which PROJ reads at run time
   libtbb-dev               # task parallelism
   libyaml-cpp-dev          # config
   libcli11-dev             # command line
@@ -33,6 +34,7 @@ PKGS=(
 TEST_PKGS=(
   parallel                 # GNU parallel: running `sacfuse tile` workers (tests/queue_e2e_test.cc)
   chromium                 # tests only: headless screenshot of the HTML run report (tests/report_e2e_test.cc)
+  gdal-bin proj-bin        # tests only: gdalsrsinfo and projinfo read back the CRS we write (tests/crs_e2e_test.cc)
 )
 if [ "$MODE" != build ]; then PKGS+=("${TEST_PKGS[@]}"); fi
 missing=()

@@ -51,6 +51,9 @@ int ColmapFusionCommand(const ColmapFusionArgs& args) {
     request.las.version_minor = config.output.las_version == "1.2" ? 2 : 4;
     request.las.scale_m = config.output.scale_m;
     AddCrsToLasOptions(ParseProjectCrs(config.crs), &request.las);  // the job's CRS, as `sacfuse run` writes it
+    if (config.input.origin_m.size() == 3) {
+      request.origin_m = {config.input.origin_m[0], config.input.origin_m[1], config.input.origin_m[2]};
+    }
     RequireColmapBinary(request.colmap);  // before any output is written
     std::filesystem::create_directories(request.out_dir);
     SetupLogging(config.log.level, (std::filesystem::path(request.out_dir) / "sacfuse.log").string());
