@@ -14,6 +14,12 @@
 
 namespace sacfuse {
 
+std::string CrsNumberText(double v, const char* format) {
+  char text[64];
+  std::snprintf(text, sizeof(text), format, v);
+  return text;
+}
+
 Crs MakeCrs(std::shared_ptr<const CrsImpl> impl) {
   Crs crs;
   crs.impl_ = std::move(impl);
@@ -34,14 +40,6 @@ const char* kInputAccepts =
     "input.cameras_crs takes \"\" (the positions are in crs), or the code, WKT, PROJJSON or PROJ string of a "
     "projected CRS in metres (e.g. \"EPSG:32631\"), of a compound one (e.g. \"EPSG:2154+5720\"), or of a "
     "geographic one (e.g. \"EPSG:4979\" WGS 84 latitude/longitude/ellipsoidal height), or \"ENU:lat,lon,h\"";
-
-std::string Fmt(double v, const char* format = "%.10g") {
-  char text[64];
-  std::snprintf(text, sizeof(text), format, v);
-  return text;
-}
-
-std::string Quoted(const std::string& s) { return "\"" + s + "\""; }
 
 std::string Trim(const std::string& s) {
   size_t b = 0, e = s.size();
@@ -74,7 +72,7 @@ struct Parsing {
   const char* accepts = kProjectAccepts;
 
   [[noreturn]] void Fail(const std::string& why) const {
-    throw Error(key + " " + Quoted(text) + ": " + why + "; " + accepts);
+    throw Error(key + " " + CrsQuoted(text) + ": " + why + "; " + accepts);
   }
 };
 
@@ -190,8 +188,8 @@ std::string Wkt(ProjContext& ctx, const PJ* crs, PJ_WKT_TYPE type) {
 std::string EnuWkt1(const Eigen::Vector3d& o) {
   // WKT1 has no topocentric frame: the origin is in the name; two axes because PROJ 9.1 refuses a LOCAL_CS with
   // three (z shares the metre unit).
-  return "LOCAL_CS[\"sacfuse local ENU: origin lat " + Fmt(o.x(), "%.15g") + ", lon " + Fmt(o.y(), "%.15g") +
-         ", h " + Fmt(o.z(), "%.15g") +
+  return "LOCAL_CS[\"sacfuse local ENU: origin lat " + CrsNumberText(o.x(), "%.15g") + ", lon " +
+         CrsNumberText(o.y(), "%.15g") + ", h " + CrsNumberText(o.z(), "%.15g") +
          " m (WGS 84 ellipsoid); z = up, metres\",LOCAL_DATUM[\"east-north-up tangent plane\",32767],"
          "UNIT[\"metre\",1,AUTHORITY[\"EPSG\",\"9001\"]],AXIS[\"Easting\",EAST],AXIS[\"Northing\",NORTH]]";
 }
@@ -205,7 +203,7 @@ std::shared_ptr<CrsImpl> ParseEnu(const Parsing& p, const std::string& t) {
     const bool last = i == 2;
     if (last != (comma == std::string::npos)) p.Fail("ENU needs exactly three numbers lat,lon,h");
     const std::string item = rest.substr(start, last ? std::string::npos : comma - start);
-    if (!ParseDouble(item, &v[i])) p.Fail(Quoted(Trim(item)) + " is not a finite number");
+    if (!ParseDouble(item, &v[i])) p.Fail(CrsQuoted(Trim(item)) + " is not a finite number");
     start = comma + 1;
   }
   if (std::abs(v[0]) > 90.0) p.Fail("ENU origin latitude must be in [-90, 90] degrees");
@@ -213,7 +211,7 @@ std::shared_ptr<CrsImpl> ParseEnu(const Parsing& p, const std::string& t) {
   auto c = std::make_shared<CrsImpl>();
   c->kind = Crs::Kind::kLocalEnu;
   c->enu_origin = Eigen::Vector3d(v[0], v[1], v[2]);
-  c->name = "local ENU at " + Fmt(v[0]) + ", " + Fmt(v[1]) + ", " + Fmt(v[2]) + " m";
+  c->name = "local ENU at " + CrsNumberText(v[0]) + ", " + CrsNumberText(v[1]) + ", " + CrsNumberText(v[2]) + " m";
   c->height_name = "height above the tangent plane";
   c->definition = c->geodetic_definition = "EPSG:4979";
   c->geodetic_name = "WGS 84";
@@ -233,7 +231,7 @@ void CheckMetricAxes(const ProjContext& ctx, const PJ* horizontal, const PJ* ver
   }
   for (const AxisInfo& a : axes) {
     if (std::abs(a.unit_factor - 1.0) > 1e-12) {
-      p.Fail("its axis " + Quoted(a.name) + " is in " + a.unit + ": coordinates must be metres (depth maps are)");
+      p.Fail("its axis " + CrsQuoted(a.name) + " is in " + a.unit + ": coordinates must be metres (depth maps are)");
     }
   }
   if (vertical != nullptr) {
@@ -268,25 +266,25 @@ std::shared_ptr<CrsImpl> ParseWithProj(const Parsing& p, const std::string& t) {
     vertical = Unbound(ctx, v.get());
     const PJ_TYPE ht = proj_get_type(horizontal.get());
     if (ht != PJ_TYPE_PROJECTED_CRS && !(p.allow_geographic && IsGeographic(ht))) {
-      p.Fail("its horizontal part " + Quoted(proj_get_name(horizontal.get())) + " is " +
+      p.Fail("its horizontal part " + CrsQuoted(proj_get_name(horizontal.get())) + " is " +
              (IsGeographic(ht) ? std::string("geographic (latitude/longitude): the horizontal part must be a "
                                              "projected CRS in metres")
                                : TypeName(ht)));
     }
     if (proj_get_type(vertical.get()) != PJ_TYPE_VERTICAL_CRS) {
-      p.Fail("its second part " + Quoted(proj_get_name(vertical.get())) + " is not a vertical CRS");
+      p.Fail("its second part " + CrsQuoted(proj_get_name(vertical.get())) + " is not a vertical CRS");
     }
   } else if (type == PJ_TYPE_PROJECTED_CRS || (p.allow_geographic && IsGeographic(type))) {
     horizontal = PjPtr(proj_clone(ctx.get(), crs.get()));
   } else if (IsGeographic(type)) {
-    p.Fail(Quoted(proj_get_name(crs.get())) + " is " + TypeName(type) +
+    p.Fail(CrsQuoted(proj_get_name(crs.get())) + " is " + TypeName(type) +
            ": the project CRS must be projected, in metres (e.g. the UTM zone of the area, EPSG:326zz or "
            "EPSG:258zz, or the national grid); latitude/longitude camera positions are converted into it");
   } else if (type == PJ_TYPE_VERTICAL_CRS) {
-    p.Fail(Quoted(proj_get_name(crs.get())) + " is " + TypeName(type) +
+    p.Fail(CrsQuoted(proj_get_name(crs.get())) + " is " + TypeName(type) +
            ": combine it with a projected CRS, e.g. EPSG:2154+5720");
   } else {
-    p.Fail(Quoted(proj_get_name(crs.get())) + " is " + TypeName(type));
+    p.Fail(CrsQuoted(proj_get_name(crs.get())) + " is " + TypeName(type));
   }
   const bool geographic = IsGeographic(proj_get_type(horizontal.get()));
   if (!geographic) CheckMetricAxes(ctx, horizontal.get(), vertical.get(), p);
@@ -322,10 +320,10 @@ std::shared_ptr<CrsImpl> ParseWithProj(const Parsing& p, const std::string& t) {
     }
     if (c->horizontal_epsg <= 0 || c->horizontal_epsg > kMaxGeoKeyCode) {
       c->las12_problem = "LAS 1.2 stores the CRS as GeoTIFF keys, which name an EPSG code (1..32766); " +
-                         Quoted(proj_get_name(horizontal.get())) + " has none";
+                         CrsQuoted(proj_get_name(horizontal.get())) + " has none";
     } else if (vertical && (c->vertical_epsg <= 0 || c->vertical_epsg > kMaxGeoKeyCode)) {
       c->las12_problem = "LAS 1.2 stores the CRS as GeoTIFF keys, which name an EPSG code (1..32766); the vertical "
-                         "CRS " + Quoted(c->height_name) + " has none";
+                         "CRS " + CrsQuoted(c->height_name) + " has none";
     }
   }
   double west = 0, south = 0, east = 0, north = 0;
@@ -363,12 +361,12 @@ void RequireGeoreferenced(const Crs& crs, const char* what) {
 
 void CheckLatLon(const Crs& crs, double lat_deg, double lon_deg, double h_m) {
   if (!std::isfinite(lat_deg) || !std::isfinite(lon_deg) || !std::isfinite(h_m)) {
-    throw Error(crs.key() + " " + Quoted(crs.text()) + ": point (lat " + Fmt(lat_deg) + ", lon " + Fmt(lon_deg) +
-                ", h " + Fmt(h_m) + " m): not finite");
+    throw Error(crs.key() + " " + CrsQuoted(crs.text()) + ": point (lat " + CrsNumberText(lat_deg) + ", lon " +
+                CrsNumberText(lon_deg) + ", h " + CrsNumberText(h_m) + " m): not finite");
   }
   if (std::abs(lat_deg) > 90.0 || std::abs(lon_deg) > 540.0) {
-    throw Error(crs.key() + " " + Quoted(crs.text()) + ": point (lat " + Fmt(lat_deg) + ", lon " + Fmt(lon_deg) +
-                "): latitude must be in [-90, 90] and longitude in [-180, 180] degrees");
+    throw Error(crs.key() + " " + CrsQuoted(crs.text()) + ": point (lat " + CrsNumberText(lat_deg) + ", lon " +
+                CrsNumberText(lon_deg) + "): latitude must be in [-90, 90] and longitude in [-180, 180] degrees");
   }
 }
 
@@ -379,7 +377,7 @@ const CrsTransform& FromGeodetic(const Crs& crs) {
     try {
       c.from_geodetic = std::make_shared<CrsTransform>(GeodeticCrsOf(crs), crs);
     } catch (const Error& e) {
-      throw Error(c.key + " " + Quoted(c.text) + ": geodetic coordinates (latitude, longitude, ellipsoidal height) "
+      throw Error(c.key + " " + CrsQuoted(c.text) + ": geodetic coordinates (latitude, longitude, ellipsoidal height) "
                   "cannot be converted: " + e.what());
     }
   }
@@ -442,10 +440,11 @@ void CheckAreaOfUse(const Crs& crs, double lat_deg, double lon_deg) {
   const bool lon_ok = span + 2 * m >= 360.0 || d <= span + 2 * m;
   const bool lat_ok = lat_deg >= c.area_south - m && lat_deg <= c.area_north + m;
   if (!lon_ok || !lat_ok) {
-    throw Error(c.key + " " + Quoted(c.text) + ": point (lat " + Fmt(lat_deg) + ", lon " + Fmt(lon_deg) +
-                ") is outside the area of use of " + Quoted(c.name) + " (longitude " + Fmt(c.area_west) + ".." +
-                Fmt(c.area_east) + ", latitude " + Fmt(c.area_south) + ".." + Fmt(c.area_north) + ", plus " +
-                Fmt(m) + " degrees): choose the CRS of the project area (e.g. its UTM zone)");
+    throw Error(c.key + " " + CrsQuoted(c.text) + ": point (lat " + CrsNumberText(lat_deg) + ", lon " +
+                CrsNumberText(lon_deg) + ") is outside the area of use of " + CrsQuoted(c.name) + " (longitude " +
+                CrsNumberText(c.area_west) + ".." + CrsNumberText(c.area_east) + ", latitude " +
+                CrsNumberText(c.area_south) + ".." + CrsNumberText(c.area_north) + ", plus " + CrsNumberText(m) +
+                " degrees): choose the CRS of the project area (e.g. its UTM zone)");
   }
 }
 
@@ -476,7 +475,7 @@ PJ* HorizontalProjection(const CrsImpl& c) {
                         : nullptr);
     if (op) c.latlon_from_horizontal.reset(proj_normalize_for_visualization(ctx.get(), op.get()));
     if (!c.latlon_from_horizontal) {
-      throw Error(c.key + " " + Quoted(c.text) + ": PROJ cannot invert the projection: " + ctx.TakeMessages());
+      throw Error(c.key + " " + CrsQuoted(c.text) + ": PROJ cannot invert the projection: " + ctx.TakeMessages());
     }
   }
   return c.latlon_from_horizontal.get();
@@ -489,7 +488,7 @@ Eigen::Vector2d ProjectionStep(const CrsImpl& c, PJ_DIRECTION dir, double x, dou
   const PJ_COORD r = proj_trans(op, dir, proj_coord(x, y, 0, 0));
   if (proj_errno(op) != 0 || !std::isfinite(r.xy.x) || !std::isfinite(r.xy.y)) {
     proj_errno_reset(op);
-    throw Error(c.key + " " + Quoted(c.text) + ": point (" + Fmt(x) + ", " + Fmt(y) +
+    throw Error(c.key + " " + CrsQuoted(c.text) + ": point (" + CrsNumberText(x) + ", " + CrsNumberText(y) +
                 ") is outside the projection's domain: " + c.ctx->TakeMessages());
   }
   return {r.xy.x, r.xy.y};
@@ -510,7 +509,7 @@ Eigen::Vector2d LatLonFromProject(const Crs& crs, const Eigen::Vector3d& point_i
 double GridConvergenceDeg(const Crs& crs, double lat_deg, double lon_deg) {
   const CrsImpl& c = crs.impl();
   if (c.kind != Crs::Kind::kProjected) {
-    throw Error(c.key + " " + Quoted(c.text) + ": not a projected CRS (no grid convergence)");
+    throw Error(c.key + " " + CrsQuoted(c.text) + ": not a projected CRS (no grid convergence)");
   }
   CheckLatLon(crs, lat_deg, lon_deg, 0.0);
   // The direction of the meridian on the grid, by central differences over +-11 m (PROJ's projections are exact

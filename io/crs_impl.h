@@ -14,6 +14,10 @@ namespace sacfuse {
 
 class CrsTransform;
 
+// Numbers ("%.10g") and quoted names in the messages of io/crs*.cc.
+std::string CrsNumberText(double v, const char* format = "%.10g");
+inline std::string CrsQuoted(const std::string& s) { return "\"" + s + "\""; }
+
 struct CrsImpl {
   Crs::Kind kind = Crs::Kind::kNone;
   std::string text;  // as given

@@ -14,13 +14,6 @@
 namespace sacfuse {
 namespace {
 
-std::string Fmt(double v) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.10g", v);
-  return text;
-}
-
-std::string Quoted(const std::string& s) { return "\"" + s + "\""; }
 
 // The topocentric conversion of an ENU frame: (longitude deg, latitude deg, ellipsoidal h m) on WGS 84 ->
 // (east, north, up) m at the origin.
@@ -37,7 +30,7 @@ PjPtr Topocentric(const ProjContext& ctx, const Eigen::Vector3d& origin) {
 
 PjPtr CreateCrs(ProjContext& ctx, const CrsImpl& c) {
   PjPtr p(proj_create(ctx.get(), c.definition.c_str()));
-  if (!p) throw Error("PROJ cannot rebuild " + Quoted(c.name) + ": " + ctx.TakeMessages());
+  if (!p) throw Error("PROJ cannot rebuild " + CrsQuoted(c.name) + ": " + ctx.TakeMessages());
   return p;
 }
 
@@ -62,7 +55,7 @@ std::string WhyNoOperation(ProjContext& ctx, const PJ* src, const PJ* dst) {
                (url != nullptr && *url ? std::string(" (") + url + ")" : std::string());
     }
     if (!grids.empty()) {
-      why = "the operation " + Quoted(proj_get_name(best.get())) + " needs the grid " + grids +
+      why = "the operation " + CrsQuoted(proj_get_name(best.get())) + " needs the grid " + grids +
             ", which PROJ does not find in its search path (" + JoinedSearchPaths(ctx) +
             "): put the file into one of these folders (or into a folder named by the environment variable "
             "PROJ_DATA); sacfuse never downloads grids";
@@ -108,9 +101,9 @@ struct CrsTransform::State {
     step(last, PJ_FWD);
     if (!ok) {
       const std::string msg = ctx.TakeMessages();
-      throw Error("point (" + Fmt(p.x()) + ", " + Fmt(p.y()) + ", " + Fmt(p.z()) + ") of " +
-                  Quoted(inverse ? to_name : from_name) + " cannot be transformed to " +
-                  Quoted(inverse ? from_name : to_name) +
+      throw Error("point (" + CrsNumberText(p.x()) + ", " + CrsNumberText(p.y()) + ", " + CrsNumberText(p.z()) +
+                  ") of " + CrsQuoted(inverse ? to_name : from_name) + " cannot be transformed to " +
+                  CrsQuoted(inverse ? from_name : to_name) +
                   (msg.empty() ? std::string(" (outside the area PROJ's operation covers)") : ": " + msg));
     }
     return out_geo ? Eigen::Vector3d(c.xyz.y, c.xyz.x, c.xyz.z) : Eigen::Vector3d(c.xyz.x, c.xyz.y, c.xyz.z);
@@ -121,7 +114,7 @@ CrsTransform::CrsTransform(const Crs& from, const Crs& to) : s_(std::make_unique
   const CrsImpl& f = from.impl();
   const CrsImpl& t = to.impl();
   if (!from.georeferenced() || !to.georeferenced()) {
-    throw Error("a transformation needs two CRSs (" + Quoted(f.text) + " -> " + Quoted(t.text) + ")");
+    throw Error("a transformation needs two CRSs (" + CrsQuoted(f.text) + " -> " + CrsQuoted(t.text) + ")");
   }
   State& s = *s_;
   s.from_name = from.Name();
@@ -139,15 +132,15 @@ CrsTransform::CrsTransform(const Crs& from, const Crs& to) : s_(std::make_unique
     PjPtr op(proj_create_crs_to_crs_from_pj(s.ctx.get(), src.get(), dst.get(), nullptr, options));
     if (!op) {
       s.ctx.TakeMessages();
-      throw Error("no transformation from " + Quoted(s.from_name) + " to " + Quoted(s.to_name) + ": " +
+      throw Error("no transformation from " + CrsQuoted(s.from_name) + " to " + CrsQuoted(s.to_name) + ": " +
                   WhyNoOperation(s.ctx, src.get(), dst.get()));
     }
     s.op.reset(proj_normalize_for_visualization(s.ctx.get(), op.get()));
-    if (!s.op) throw Error("PROJ cannot normalise the axes of " + Quoted(proj_get_name(op.get())));
+    if (!s.op) throw Error("PROJ cannot normalise the axes of " + CrsQuoted(proj_get_name(op.get())));
     const char* name = proj_get_name(s.op.get());
     s.description = name != nullptr && *name ? name : "one of several operations, by area";
     const double accuracy = proj_coordoperation_get_accuracy(s.ctx.get(), s.op.get());
-    if (accuracy >= 0) s.description += " (accuracy " + Fmt(accuracy) + " m)";
+    if (accuracy >= 0) s.description += " (accuracy " + CrsNumberText(accuracy) + " m)";
   }
   s.ctx.TakeMessages();
 }
