@@ -40,9 +40,10 @@ std::vector<std::string> RemoveTemporaryFiles(const std::string& dir, bool recur
   if (!fs::is_directory(dir, ec)) return removed;
   std::vector<fs::path> temporary;
   const auto visit = [&](const fs::directory_entry& entry) {
-    if (entry.is_regular_file(ec) && IsTemporaryFileName(entry.path().filename().string())) {
-      temporary.push_back(entry.path());
-    }
+    const bool file = entry.is_regular_file(ec);
+    // A work folder named like a temporary file (io/copc_writer.h) goes with everything in it.
+    const bool folder = !file && entry.is_directory(ec);
+    if ((file || folder) && IsTemporaryFileName(entry.path().filename().string())) temporary.push_back(entry.path());
   };
   if (recursive) {
     for (const auto& entry : fs::recursive_directory_iterator(dir, ec)) visit(entry);
@@ -50,7 +51,7 @@ std::vector<std::string> RemoveTemporaryFiles(const std::string& dir, bool recur
     for (const auto& entry : fs::directory_iterator(dir, ec)) visit(entry);
   }
   for (const auto& path : temporary) {
-    if (fs::remove(path, ec)) removed.push_back(path.string());
+    if (fs::remove_all(path, ec) > 0) removed.push_back(path.string());
   }
   return removed;
 }

@@ -12,7 +12,8 @@ std::string TemporaryPathFor(const std::string& path);
 // Whether a file name has the form TemporaryPathFor gives.
 bool IsTemporaryFileName(const std::string& file_name);
 // Deletes the files in `dir` (and its sub-folders when `recursive`) named as TemporaryPathFor names them, left by
-// a killed process (callers make sure no live process of the job writes there); returns their paths.
+// a killed process (callers make sure no live process of the job writes there), and folders so named with
+// everything in them (work folders, io/copc_writer.h); returns their paths.
 std::vector<std::string> RemoveTemporaryFiles(const std::string& dir, bool recursive = false);
 // fsync a written file by path; throws Error on failure.
 void FsyncPath(const std::string& path);
