@@ -13,6 +13,7 @@
 #include <memory>
 
 #include "core/error.h"
+#include "io/copc_validate.h"
 #include "io/input_file.h"
 #include "io/las_crs.h"
 #include "io/las_format.h"
@@ -63,6 +64,7 @@ class Validator {
     CheckCrs();
     if (size_ok) CheckPoints();
     if (compressed_) CheckCompressedPoints();
+    for (const std::string& f : ValidateCopc(path_)) findings_.push_back(f);
     return findings_;
   }
 

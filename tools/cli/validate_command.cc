@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "config/version.h"
+#include "io/copc_validate.h"
 #include "io/las_crs.h"
 #include "io/las_reader.h"
 #include "io/las_validate.h"
@@ -29,12 +30,13 @@ struct FileCheck {
   int point_format = -1;
   uint64_t point_count = 0;
   std::string crs;  // the CRS description, or "unreadable: ..."
+  std::string copc;  // a COPC file's octree summary; empty for plain LAS/LAZ
 
   // "LAS 1.4, point format 7, 1234 points, CRS EPSG:25832 (...)", or why the reader refuses the file.
   std::string Summary() const {
     if (!readable) return "not readable by sacfuse: " + error;
     return "LAS " + las_version + ", point format " + std::to_string(point_format) + ", " +
-           std::to_string(point_count) + " points, CRS " + crs;
+           std::to_string(point_count) + " points, CRS " + crs + (copc.empty() ? "" : ", " + copc);
   }
 };
 
@@ -54,6 +56,7 @@ FileCheck CheckFile(const std::string& path) {
     } catch (const std::exception& e) {
       f.crs = std::string("unreadable: ") + e.what();
     }
+    f.copc = DescribeCopc(path);
   } catch (const std::exception& e) {
     f.error = e.what();
   }
@@ -68,6 +71,7 @@ nlohmann::json FileJson(const FileCheck& f) {
     j["point_format"] = f.point_format;
     j["point_count"] = f.point_count;
     j["crs"] = f.crs;
+    if (!f.copc.empty()) j["copc"] = f.copc;
   } else {
     j["error"] = f.error;
   }
@@ -115,7 +119,8 @@ void AddValidateCommand(CLI::App& app, int* exit_code) {
   auto* cmd = app.add_subcommand(
       "validate",
       "Check LAS files as lasvalidate does (header size, offsets, record length, counts, points by return, bounds, "
-      "return numbers, global encoding, scale/offset, CRS records); exit 1 when any file has a finding");
+      "return numbers, global encoding, scale/offset, CRS records), and COPC files' octree (hierarchy pages, every "
+      "node's chunk within the file, counts, points inside their nodes); exit 1 when any file has a finding");
   cmd->add_option("FILE", *paths, "LAS files")->required();
   cmd->add_flag("--json", *json, "Print one JSON object (the schema below) instead of text");
   cmd->footer(
