@@ -95,6 +95,10 @@ void CheckCrossKeyRules(const JobConfig& c, std::vector<OptionError>* errors) {
                        "must be [east, north, height]: 3 numbers, metres"});
   }
   CheckRasterInputKeys(c.input, errors);
+  if (c.output.format == "copc" && c.output.las_version != "1.4") {
+    errors->push_back({"output.las_version", c.output.las_version,
+                       "must be 1.4 with output.format copc (COPC is LAS 1.4, point format 7)"});
+  }
   if (!IsAllowedLasScale(c.output.scale_m)) {
     errors->push_back({"output.scale_m", Number(c.output.scale_m),
                        "must be 10^k x {1, 0.5, 0.25} (e.g. 0.001, 0.0025, 0.01)"});

@@ -40,6 +40,7 @@ struct InputOptions {
 struct OutputOptions {
   std::string dir = "sacfuse_out";      // output folder (fused.laz or fused.las, logs, effective config, run report)
   std::string format = "laz";           // laz (LASzip-compressed, io/laz_*.h) | las (uncompressed): DIR/fused.<format>
+                                        // | copc (io/copc_writer.h): DIR/fused.copc.laz
   std::string las_version = "1.4";      // 1.4 (point format 7) | 1.2 (point format 3)
   double scale_m = 0.001;               // LAS coordinate quantum, metres (10^k x {1, 0.5, 0.25})
 };

@@ -70,9 +70,11 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "rasters: CRS of the camera file's positions (projected, compound or geographic; as crs), "
               "transformed into crs through PROJ; empty = crs");
   s.AddString("output.dir", &c->output.dir, Neutral("-", RequiredText()), "output folder (relative to this file)");
-  s.AddString("output.format", &c->output.format, Neutral("-", Choices({"laz", "las"})),
-              "point cloud format of DIR/fused.<format>: laz (LASzip-compressed, 50,000-point chunks) | las "
-              "(uncompressed); tile files stay uncompressed LAS (intermediate, read back by merge and report)");
+  s.AddString("output.format", &c->output.format, Neutral("-", Choices({"laz", "las", "copc"})),
+              "point cloud format: laz (DIR/fused.laz, LASzip-compressed, 50,000-point chunks) | las (DIR/fused.las, "
+              "uncompressed) | copc (DIR/fused.copc.laz, a Cloud Optimized Point Cloud viewers stream; LAS 1.4 "
+              "only; built out of core within resources.memory_gb). Tiled runs write their tiles as LAZ "
+              "(tiles/<id>.laz), as COPC for copc (tiles/<id>.copc.laz), and a tile index DIR/tiles.vpc");
   s.AddString("output.las_version", &c->output.las_version, Affects("-", Choices({"1.4", "1.2"})),
               "LAS version: 1.4 (point format 7) | 1.2 (format 3)");
   s.AddDouble("output.scale_m", &c->output.scale_m, Affects("m", Closed(1e-6, 1.0)),

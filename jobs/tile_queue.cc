@@ -9,6 +9,7 @@
 #include "jobs/coregistered_block.h"
 #include "jobs/las_options.h"
 #include "jobs/open_input.h"
+#include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tile_fusion.h"
 #include "tiles/tile_manifest.h"
@@ -54,12 +55,12 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   if (tile == nullptr) {
     throw ConfigError("--id " + id + ": not a tile with views of this job (see `sacfuse plan CONFIG --list`)");
   }
-  const TileJob job{config, *input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
+  const TileJob job{config, *input, plan, TileCloudOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
                     identity.views};
   fs::create_directories(job.tiles_dir);
   const TileInputs inputs = TileInputsOf(*tile, input->views(), identity.views);
   if (VerifyTileDone(job.tiles_dir, id, job.hash, true, &inputs).done) return {};
-  RecordTiledRunState(config, plan, job.las, 1);
+  RecordTiledRunState(config, plan, job.cloud.las, 1);
   MethodTileFuser fuser(config, *input, plan, identity.views);
   return WorkOnTile(job, *tile, /*forced=*/false, nullptr, fuser);
 }
@@ -73,6 +74,7 @@ MergeJobOutcome MergeJob(const JobConfig& given) {
   out.fused_las_path = FusedLasPath(config);
   out.missing = MissingTiles(config, *input, plan, identity.views);
   if (!out.missing.empty()) return out;
+  RemoveTemporaryFilesOfKilledRuns(config);
   out.merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), out.fused_las_path);
   return out;
 }

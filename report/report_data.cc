@@ -176,6 +176,7 @@ std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::str
         t.status = TileStatus::kDone;
         if (const auto m = ReadTileDoneMarker(tiles_dir, t.id)) {
           t.points = m->points;
+          t.file = TileCloudPath(tiles_dir, *m);
           t.views = m->views;
           t.seconds = m->seconds;
           t.peak_rss_mib = m->peak_rss_mib;

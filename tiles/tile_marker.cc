@@ -109,7 +109,10 @@ TileInputs TileInputsOf(const PlannedTile& tile, const std::vector<View>& views,
   return inputs;
 }
 
-std::string TileLasPath(const std::string& tiles_dir, const std::string& id) { return Path(tiles_dir, id + ".laz"); }
+std::string TileCloudFileName(const std::string& id, bool copc) { return id + (copc ? ".copc.laz" : ".laz"); }
+std::string TileCloudPath(const std::string& tiles_dir, const TileDoneMarker& marker) {
+  return Path(tiles_dir, marker.file.empty() ? TileCloudFileName(marker.id, false) : marker.file);
+}
 std::string TileDonePath(const std::string& tiles_dir, const std::string& id) {
   return Path(tiles_dir, id + ".done.json");
 }
@@ -117,11 +120,12 @@ std::string TileFailedPath(const std::string& tiles_dir, const std::string& id) 
   return Path(tiles_dir, id + ".failed.json");
 }
 
-TileDoneMarker DescribeTileLas(const std::string& tiles_dir, const std::string& id, bool has_las) {
+TileDoneMarker DescribeTileFile(const std::string& tiles_dir, const std::string& id, const std::string& file) {
   TileDoneMarker m;
   m.id = id;
-  if (!has_las) return m;
-  const std::string las = TileLasPath(tiles_dir, id);
+  if (file.empty()) return m;
+  m.file = file;
+  const std::string las = Path(tiles_dir, file);
   m.file_size = fs::file_size(las);
   const LasHeader header = LasReader(las).header();
   m.points = header.point_count;
@@ -139,6 +143,7 @@ void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& m) 
   nlohmann::json j = {{"id", m.id},
                             {"config_hash", m.config_hash},
                             {"points", m.points},
+                            {"file", m.file},
                             {"file_size", m.file_size},
                             {"checksum_fnv1a64", m.checksum},
                             {"min", m.min},
@@ -160,6 +165,7 @@ std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, c
     m.id = j->at("id").get<std::string>();
     m.config_hash = j->at("config_hash").get<std::string>();
     m.points = j->at("points").get<uint64_t>();
+    m.file = j->value("file", std::string());
     m.file_size = j->at("file_size").get<uint64_t>();
     m.checksum = j->at("checksum_fnv1a64").get<std::string>();
     m.min = j->at("min").get<std::array<double, 3>>();
@@ -201,7 +207,7 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
     return fail("its done marker's points per view add up to " + std::to_string(per_view_sum) + ", not " +
                 std::to_string(m->points) + (m->points_per_view.empty() ? " (written by an older sacfuse)" : ""));
   }
-  const std::string las = TileLasPath(tiles_dir, id);
+  const std::string las = TileCloudPath(tiles_dir, *m);
   const std::string name = fs::path(las).filename().string();
   std::error_code ec;
   if (m->points == 0) {
@@ -240,7 +246,8 @@ void ClearTileState(const std::string& tiles_dir, const std::string& id) {
   // The marker goes first: a kill between the removals leaves no marker pointing at a missing file.
   fs::remove(TileDonePath(tiles_dir, id), ec);
   fs::remove(TileFailedPath(tiles_dir, id), ec);
-  fs::remove(TileLasPath(tiles_dir, id), ec);
+  fs::remove(Path(tiles_dir, TileCloudFileName(id, false)), ec);
+  fs::remove(Path(tiles_dir, TileCloudFileName(id, true)), ec);
   fs::remove(Path(tiles_dir, id + ".las"), ec);  // written by versions before the tiles were LAZ
 }
 

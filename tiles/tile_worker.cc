@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <optional>
 
 #include <spdlog/spdlog.h>
@@ -19,16 +20,18 @@ TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const Ti
   ClearTileState(job.tiles_dir, tile.id);
   const auto start = std::chrono::steady_clock::now();
   TileFused fused;
-  bool has_las = false;
+  const std::string file = TileCloudFileName(tile.id, job.cloud.copc.has_value());
+  std::string written;
   {
-    LasWriter writer(TileLasPath(job.tiles_dir, tile.id), job.las);
-    fused = fuser.Fuse(tile, writer);
-    if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
-      writer.Close();
-      has_las = true;
+    const std::unique_ptr<PointCloudWriter> writer =
+        OpenPointCloudWriter((std::filesystem::path(job.tiles_dir) / file).string(), job.cloud);
+    fused = fuser.Fuse(tile, *writer);
+    if (writer->num_points() > 0) {  // an empty tile writes no file (the writer removes its temporary file)
+      writer->Close();
+      written = file;
     }
   }
-  TileDoneMarker marker = DescribeTileLas(job.tiles_dir, tile.id, has_las);
+  TileDoneMarker marker = DescribeTileFile(job.tiles_dir, tile.id, written);
   marker.config_hash = job.hash;
   marker.views = tile.views.size();
   for (uint32_t v = 0; v < fused.points_per_view.size(); ++v) {

@@ -35,8 +35,9 @@ int MergeCommand(const ConfigArgs& args) {
 
 void AddMergeCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<ConfigArgs>();
-  auto* cmd = app.add_subcommand("merge", "Merge the done tiles of a tiled run into DIR/fused.laz (or .las, output.format; exit 1 listing "
-                                          "the missing tiles when some are not done)");
+  auto* cmd = app.add_subcommand("merge", "Merge the done tiles of a tiled run into DIR/fused.laz (or .las, .copc.laz: output.format) and "
+                                          "index them in DIR/tiles.vpc (exit 1 listing the missing tiles when some "
+                                          "are not done)");
   AddConfigOptions(cmd, args.get(), "YAML config of the run (with the run's --set and --output-dir)");
   cmd->callback([args, exit_code] {
     SetupLogging("info");

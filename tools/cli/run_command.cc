@@ -124,7 +124,8 @@ int RunCommand(const RunArgs& args) {
 
 void AddRunCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<RunArgs>();
-  auto* cmd = app.add_subcommand("run", "Fuse the depth maps named by a YAML config into DIR/fused.laz (or fused.las: output.format)");
+  auto* cmd = app.add_subcommand("run", "Fuse the depth maps named by a YAML config into DIR/fused.laz (or fused.las, fused.copc.laz: "
+                                        "output.format)");
   AddConfigOptions(cmd, &args->config, "YAML config (see --print-defaults)", /*required=*/false);
   cmd->add_flag("--print-defaults", args->print_defaults, "Print a complete commented config with every default");
   cmd->add_option("--threads", args->threads, "Set resources.threads (0 = all cores), as --set resources.threads=N")
