@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "io/las_format.h"
+#include "io/unique_file.h"
 
 namespace sacfuse::copc {
 namespace lf = las_format;
@@ -16,12 +17,7 @@ namespace {
 
 constexpr size_t kReadRecords = size_t{1} << 16;
 
-struct FileCloser {
-  void operator()(FILE* f) const {
-    if (f != nullptr) std::fclose(f);
-  }
-};
-using File = std::unique_ptr<FILE, FileCloser>;
+using File = UniqueFile;
 
 File Open(const std::string& path, const char* mode) {
   File f(std::fopen(path.c_str(), mode));

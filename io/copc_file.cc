@@ -164,6 +164,12 @@ void CopcFile::WriteNodes(const RecordView& records, const std::vector<BuiltNode
   }
 }
 
+int CopcFile::levels() const {
+  int levels = 0;
+  for (const Entry& e : entries_) levels = std::max(levels, e.key.level + 1);
+  return levels;
+}
+
 void CopcFile::Finish() {
   if (points_ != header_.count) {
     throw Error(path_ + ": COPC build wrote " + std::to_string(points_) + " points, the header counts " +
@@ -186,7 +192,7 @@ void CopcFile::Finish() {
   hierarchy.record_id = lf::kCopcHierarchyRecordId;
   hierarchy.description = "COPC hierarchy";
   hierarchy.extended = true;
-  hierarchy.data = EncodeHierarchy(entries_, evlr_start + lf::kEvlrHeaderSize, layout_, &root_page_bytes);
+  hierarchy.data = EncodeHierarchy(entries_, evlr_start + lf::kEvlrHeaderSize, layout_, &root_page_bytes, &pages_);
   std::vector<LasVlr> evlrs = {hierarchy};
   evlrs.insert(evlrs.end(), evlrs_.begin(), evlrs_.end());
   for (const LasVlr& v : evlrs) {

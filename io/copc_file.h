@@ -31,8 +31,11 @@ class CopcFile {
   // Compresses each node's points (indices into `records`) into one chunk, nodes in parallel, and appends the
   // chunks in the order given. A node without points gets a 0-point hierarchy entry (it must have descendants).
   void WriteNodes(const RecordView& records, const std::vector<BuiltNode>& nodes);
-  // Points written so far.
+  // Points written so far; after Finish, the hierarchy's nodes, levels and pages.
   uint64_t points() const { return points_; }
+  size_t nodes() const { return entries_.size(); }
+  int levels() const;
+  size_t pages() const { return pages_; }
   // Chunk table, hierarchy and EVLRs, header and info patched; fsync, rename. Throws Error when the points
   // written differ from the header's count.
   void Finish();
@@ -55,6 +58,7 @@ class CopcFile {
   std::vector<std::pair<uint32_t, uint32_t>> chunks_;  // points, bytes (file order)
   uint64_t position_ = 0;  // bytes written
   uint64_t points_ = 0;
+  size_t pages_ = 0;
   bool gps_seen_ = false;
   double gps_min_ = 0.0, gps_max_ = 0.0;
   bool finished_ = false;

@@ -14,7 +14,7 @@ bool ByLevelThenKey(const Entry& a, const Entry& b) { return a.key < b.key; }
 }  // namespace
 
 std::vector<uint8_t> EncodeHierarchy(const std::vector<Entry>& given, uint64_t payload_offset,
-                                     const PageLayout& layout, uint64_t* root_page_bytes) {
+                                     const PageLayout& layout, uint64_t* root_page_bytes, size_t* page_count) {
   std::vector<Entry> nodes = given;
   std::sort(nodes.begin(), nodes.end(), ByLevelThenKey);  // parents before children
   if (nodes.empty() || nodes[0].key.level != 0) throw Error("COPC hierarchy without a root node");
@@ -85,6 +85,7 @@ std::vector<uint8_t> EncodeHierarchy(const std::vector<Entry>& given, uint64_t p
     for (const Entry& e : listed) AppendEntry(e, &payload);
   }
   *root_page_bytes = page_bytes(pages[0]);
+  *page_count = pages.size();
   return payload;
 }
 

@@ -24,9 +24,9 @@ struct PageLayout {
 
 // The EVLR payload for `nodes` (every node with points and every 0-point node with descendants; each node's
 // ancestors must be among them), whose first byte will be at absolute file offset `payload_offset`;
-// *root_page_bytes gets the size of the root page (the payload's first bytes).
+// *root_page_bytes gets the size of the root page (the payload's first bytes), *pages the number of pages.
 std::vector<uint8_t> EncodeHierarchy(const std::vector<Entry>& nodes, uint64_t payload_offset,
-                                     const PageLayout& layout, uint64_t* root_page_bytes);
+                                     const PageLayout& layout, uint64_t* root_page_bytes, size_t* pages);
 
 // Reads `bytes` bytes at absolute `offset` into `out`; false when they are not in the file.
 using ReadBytes = std::function<bool(uint64_t offset, size_t bytes, std::vector<uint8_t>* out)>;

@@ -14,6 +14,7 @@
 #include "io/laz_chunk_codec.h"
 #include "io/laz_chunk_table.h"
 #include "io/laz_vlr.h"
+#include "io/unique_file.h"
 
 namespace sacfuse {
 namespace lf = las_format;
@@ -29,11 +30,6 @@ bool EndsWith(const std::string& s, const std::string& tail) {
   return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
 }
 
-struct FileCloser {
-  void operator()(FILE* f) const {
-    if (f != nullptr) std::fclose(f);
-  }
-};
 
 class CopcCheck {
  public:
@@ -326,7 +322,7 @@ class CopcCheck {
   }
 
   std::string path_;
-  std::unique_ptr<FILE, FileCloser> file_;
+  UniqueFile file_;
   uint64_t size_ = 0;
   uint16_t header_size_ = 0;
   uint32_t point_offset_ = 0;

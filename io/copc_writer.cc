@@ -1,6 +1,7 @@
 #include "io/copc_writer.h"
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <numeric>
@@ -133,7 +134,8 @@ struct CopcWriter::Impl {
     std::error_code ec;
     if (!work_dir.empty()) fs::remove_all(work_dir, ec);
   }
-  void Build();
+  // Closes the spill, builds the octree, writes the file; logs the time since `start`.
+  void Build(std::chrono::steady_clock::time_point start);
 };
 
 CopcWriter::CopcWriter(const std::string& path, const LasWriterOptions& las, const CopcOptions& copc)
@@ -176,7 +178,8 @@ void CopcWriter::Write(const FusedPoint* points, size_t count) { impl_->spill->W
 
 void CopcWriter::WritePoints(const LasPoint* points, size_t count) { impl_->spill->WritePoints(points, count); }
 
-void CopcWriter::Impl::Build() {
+void CopcWriter::Impl::Build(std::chrono::steady_clock::time_point start) {
+  spill->Close();
   LasHeader h;
   {
     LasReader reader(spill_path);
@@ -219,14 +222,17 @@ void CopcWriter::Impl::Build() {
                       copc::PageLayout{copc.page_levels, copc.min_page_entries});
   TreeBuilder(cube, buckets, spill_path, length, copc.max_node_points, &file).Build();
   file.Finish();
+  spdlog::info("{}: COPC of {} points built in {:.1f} s: {} nodes in {} levels, {} hierarchy page{}, root spacing "
+               "{:.3f} m", path, h.point_count,
+               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), file.nodes(),
+               file.levels(), file.pages(), file.pages() == 1 ? "" : "s", cube.ToInfo(h.scale[0], h.offset).spacing);
 }
 
 void CopcWriter::Close() {
   Impl& w = *impl_;
   if (w.closed) return;
   try {
-    w.spill->Close();
-    w.Build();
+    w.Build(std::chrono::steady_clock::now());
   } catch (...) {
     w.spill.reset();
     w.RemoveWorkDir();

@@ -30,6 +30,7 @@
 #include "io/las_validate.h"
 #include "io/laz_chunk_codec.h"
 #include "io/laz_vlr.h"
+#include "tests/support/log_capture.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
@@ -60,6 +61,15 @@ std::vector<LasPoint> AerialPoints(size_t n, uint32_t seed) {
     p.intensity = static_cast<uint16_t>(i % 1000);
   }
   return pts;
+}
+
+// Buckets of at most `bucket_points` points (memory_bytes: the out-of-core path for larger clouds), nodes of at most
+// `node_points`.
+CopcOptions SmallBuild(size_t bucket_points, size_t node_points) {
+  CopcOptions o;
+  o.memory_bytes = 96 * bucket_points;
+  o.max_node_points = node_points;
+  return o;
 }
 
 LasWriterOptions UtmOptions() {
@@ -257,13 +267,13 @@ TEST(CopcOctreeTest, KnownCubeAndTheNearestPointOfEachCell) {
 TEST(CopcWriterTest, WritesAValidCopcWithEveryPointOnce) {
   TempDir dir;
   const std::vector<LasPoint> pts = AerialPoints(60000, 2);
-  CopcOptions copc;
-  copc.memory_bytes = 96 * 5000;
-  copc.max_node_points = 2000;
+  CopcOptions copc = SmallBuild(5000, 2000);
   copc.page_levels = 1;
   copc.min_page_entries = 3;
   const std::string path = (dir / "cloud.copc.laz").string();
+  testing::LogCapture log;
   WriteCopc(path, pts, UtmOptions(), copc);
+  EXPECT_NE(log.text().find("60000 points sorted into "), std::string::npos) << "not built out of core: " << log.text();
   EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator()), 1) << "work files left";
 
   const CopcContents c = ReadCopc(path);
@@ -288,9 +298,7 @@ TEST(CopcWriterTest, WritesAValidCopcWithEveryPointOnce) {
 TEST(CopcWriterTest, SameBytesForOneAndTwoThreads) {
   TempDir dir;
   const std::vector<LasPoint> pts = AerialPoints(30000, 3);
-  CopcOptions copc;
-  copc.memory_bytes = 96 * 8000;
-  copc.max_node_points = 1000;
+  const CopcOptions copc = SmallBuild(8000, 1000);
   for (int threads : {1, 2}) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     WriteCopc((dir / ("t" + std::to_string(threads) + ".copc.laz")).string(), pts, UtmOptions(), copc);
@@ -349,10 +357,8 @@ bool HasFinding(const std::vector<std::string>& findings, const std::string& par
 TEST(CopcValidateTest, FindsBrokenFiles) {
   TempDir dir;
   const std::vector<LasPoint> pts = AerialPoints(20000, 6);
-  CopcOptions copc;
-  copc.max_node_points = 1000;
   const fs::path good = dir / "good.copc.laz";
-  WriteCopc(good.string(), pts, UtmOptions(), copc);
+  WriteCopc(good.string(), pts, UtmOptions(), SmallBuild(100000, 1000));
   ASSERT_TRUE(ValidateCopc(good.string()).empty());
   const CopcContents c = ReadCopc(good.string());
   const uint64_t info_at = 375 + 54;

@@ -18,6 +18,7 @@
 #include "io/las_crs.h"
 #include "io/las_format.h"
 #include "io/wkt1.h"
+#include "io/unique_file.h"
 
 namespace sacfuse {
 namespace lf = las_format;
@@ -34,11 +35,6 @@ std::string Num(double v) {
   return text;
 }
 
-struct FileCloser {
-  void operator()(FILE* f) const {
-    if (f != nullptr) std::fclose(f);
-  }
-};
 
 class Validator {
  public:
@@ -535,7 +531,7 @@ class Validator {
   }
 
   std::string path_;
-  std::unique_ptr<FILE, FileCloser> file_;
+  UniqueFile file_;
   uint64_t file_size_ = 0;
   std::vector<std::string> findings_;
   std::vector<uint8_t> h_;

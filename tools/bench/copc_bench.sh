@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # COPC output at scale (docs/copc.md, "Measured"): the `dortmund` preset (16 nadir + 43 oblique views, 1 km2)
-# simulated at one pixel scale, fused once with output.format copc (tiles written as COPC, DIR/fused.copc.laz
-# built from them, DIR/tiles.vpc), then `sacfuse merge` alone into a fresh fused.copc.laz under each memory budget
+# simulated at one pixel scale, fused with output.format copc untiled (the COPC built when the fusion is done) and
+# in tiles of TILE_M metres (default 250; tiles
+# written as COPC, DIR/fused.copc.laz built from them, DIR/tiles.vpc), then `sacfuse merge` alone into a fresh
+# fused.copc.laz under each memory budget
 # (resources.memory_gb: the smaller the budget, the more octree buckets the build sorts the points into), and once
 # with output.format laz for comparison. Each command is timed with /usr/bin/time (wall, user + system CPU, peak
 # RSS) and each COPC checked with `sacfuse validate`. Last, a COPC merge killed with SIGKILL half-way and run again
@@ -22,6 +24,7 @@ scale=${2:-0.25}
 shift $(( $# >= 2 ? 2 : 1 ))
 budgets=("$@")
 [[ ${#budgets[@]} -gt 0 ]] || budgets=(4 1 0.5)
+tile_m=${TILE_M:-250}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 sacfuse=${SACFUSE:-$here/build/bin/sacfuse}
 block="$work/dortmund_$scale"
@@ -53,10 +56,13 @@ row() {  # row WHAT MEMORY_GB "wall cpu rss" POINTS NOTE
 points() {  # points FILE: the header's count
   python3 -c "import struct,sys; f=open(sys.argv[1],'rb'); f.seek(247); print(struct.unpack('<Q', f.read(8))[0])" "$1"
 }
-buckets() {  # buckets LOG: "N buckets" from the COPC build's log line, or "1 bucket"
+built() {  # built LOG: the fused COPC's build time, nodes, levels and buckets from its log lines
   local n
   n=$(grep -o "sorted into [0-9]* octree buckets" "$1" | tail -n 1 | awk '{print $3}')
-  echo "${n:-1} bucket(s)"
+  grep "fused.copc.laz: COPC of" "$1" | tail -n 1 |
+    sed -E 's/.* built in ([0-9.]+) s: ([0-9]+) nodes in ([0-9]+) levels.*/octree built in \1 s, \2 nodes, \3 levels/' |
+    tr -d '\n'
+  echo ", ${n:-1} bucket(s)"
 }
 validate() {
   "$sacfuse" validate "$1" | head -n 1 | grep -q ": ok (" || { "$sacfuse" validate "$1" >&2; echo "$0: $1 invalid" >&2; exit 1; }
@@ -72,12 +78,19 @@ PY
 
 rm -rf "$run"
 mkdir -p "$run"
-config "$run/run.yaml" "$run/out" output.format=copc
-echo "== fusing $block with output.format copc" >&2
 rows=()
-rows+=("$(row "sacfuse run (tiles + merge)" default "$(timed run "$sacfuse" run "$run/run.yaml")" \
+config "$run/untiled.yaml" "$run/untiled" output.format=copc tiling.tile_size_m=0
+echo "== fusing $block with output.format copc, untiled" >&2
+rows+=("$(row "sacfuse run, untiled" default "$(timed untiled "$sacfuse" run "$run/untiled.yaml")" \
+  "$(points "$run/untiled/fused.copc.laz")" "$(built "$run/untiled.log")")")
+validate "$run/untiled/fused.copc.laz"
+rm -rf "$run/untiled"
+config "$run/run.yaml" "$run/out" output.format=copc tiling.tile_size_m="$tile_m"
+echo "== fusing $block with output.format copc, $tile_m m tiles" >&2
+rows+=("$(row "sacfuse run, $tile_m m tiles (tiles + merge)" default "$(timed run "$sacfuse" run "$run/run.yaml")" \
   "$(points "$run/out/fused.copc.laz")" "tiles $(python3 -c "import json,sys; r=json.load(open(sys.argv[1])); \
-s=r['stage_wall_seconds']; print(f\"{s['tiles']:.0f} s, merge {s['merge']:.0f} s\")" "$run/out/run_report.json")")")
+s=r['stage_wall_seconds']; print(f\"{s['tiles']:.0f} s, merge {s['merge']:.0f} s\")" "$run/out/run_report.json"); \
+$(built "$run/run.log")")")
 validate "$run/out/fused.copc.laz"
 ls "$run"/out/tiles/*.copc.laz > /dev/null
 cp "$run/out/fused.copc.laz" "$run/fused_from_run.copc.laz"
@@ -86,7 +99,7 @@ for gb in "${budgets[@]}"; do
   config "$run/merge_$gb.yaml" "$run/out" output.format=copc resources.memory_gb="$gb"
   rm -f "$run/out/fused.copc.laz"
   rows+=("$(row "sacfuse merge (COPC)" "$gb" "$(timed "merge_$gb" "$sacfuse" merge "$run/merge_$gb.yaml")" \
-    "$(points "$run/out/fused.copc.laz")" "$(buckets "$run/merge_$gb.log"); $(du -m "$run/out/fused.copc.laz" | cut -f1) MB")")
+    "$(points "$run/out/fused.copc.laz")" "$(built "$run/merge_$gb.log"); $(du -m "$run/out/fused.copc.laz" | cut -f1) MB")")
   validate "$run/out/fused.copc.laz"
   cp "$run/out/fused.copc.laz" "$run/fused_$gb.copc.laz"
 done
