@@ -4,6 +4,8 @@
 #include <ctime>
 #include <tuple>
 #include <filesystem>
+#include <optional>
+#include <regex>
 #include <utility>
 
 #include <nlohmann/json.hpp>
@@ -42,6 +44,17 @@ Json Schemas(int pdrf) {
   return out;
 }
 
+// proj:epsg of a file: the EPSG code PROJ gives its whole CRS ("EPSG:5698"); none for a compound named by two codes
+// ("EPSG:2154+5720"), whose horizontal code alone would drop the heights' CRS; else the horizontal code (a
+// projected CRS with ellipsoidal heights, written as PROJCS + an ellipsoidal VERT_CS: its 2D code, as PDAL states it).
+std::optional<int> WholeEpsgCode(const LasCrsInfo& crs) {
+  static const std::regex single(R"(EPSG:([0-9]+))");
+  std::smatch m;
+  if (std::regex_match(crs.code, m, single)) return std::stoi(m[1].str());
+  if (crs.code.find('+') != std::string::npos || crs.epsg <= 0) return std::nullopt;
+  return crs.epsg;
+}
+
 // RFC 3339 date of a LAS creation day of year.
 std::string CreationDate(int year, int day_of_year) {
   if (year <= 0 || day_of_year <= 0) return "1970-01-01T00:00:00Z";
@@ -68,7 +81,7 @@ Json BoxPolygon(const LasHeader& h, const To& to) {
 
 }  // namespace
 
-void WriteVirtualPointCloud(const std::string& vpc_path, const std::vector<std::string>& files, const ProjectCrs& crs) {
+void WriteVirtualPointCloud(const std::string& vpc_path, const std::vector<std::string>& files, const Crs& crs) {
   const fs::path base = fs::absolute(vpc_path).parent_path();
   Json features = Json::array();
   for (const std::string& file : files) {
@@ -85,7 +98,7 @@ void WriteVirtualPointCloud(const std::string& vpc_path, const std::vector<std::
     if (crs.georeferenced()) {
       double lon_min = 180, lon_max = -180, lat_min = 90, lat_max = -90;
       const auto wgs84 = [&](double x, double y) {
-        const Eigen::Vector3d llh = GeodeticFromProject(crs, Eigen::Vector3d(x, y, z_mid));
+        const Eigen::Vector2d llh = LatLonFromProject(crs, Eigen::Vector3d(x, y, z_mid));  // no geoid grid needed
         lat_min = std::min(lat_min, llh[0]);
         lat_max = std::max(lat_max, llh[0]);
         lon_min = std::min(lon_min, llh[1]);
@@ -108,7 +121,7 @@ void WriteVirtualPointCloud(const std::string& vpc_path, const std::vector<std::
         {"proj:geometry", BoxPolygon(h, native)},
         {"proj:bbox", Json::array({h.min.x(), h.min.y(), h.min.z(), h.max.x(), h.max.y(), h.max.z()})},
     };
-    if (file_crs.epsg > 0) properties["proj:epsg"] = file_crs.epsg;
+    if (const std::optional<int> code = WholeEpsgCode(file_crs)) properties["proj:epsg"] = *code;
     const std::string href = "./" + fs::relative(fs::absolute(file), base).generic_string();
     std::string id = fs::path(file).filename().string();
     id = id.substr(0, id.find('.'));  // "3_4" of 3_4.laz and 3_4.copc.laz
