@@ -10,13 +10,15 @@
 # must give the bytes of the uninterrupted merge with the same budget (all but the header's creation date).
 #
 #   tools/bench/copc_bench.sh WORKDIR [SCALE] [MEMORY_GB ...]     (defaults: 0.25; 4 1 0.5)
+#   PRESET=tiny TILE_M=20 tools/bench/copc_bench.sh WORKDIR 1 1 0.05   (a check of the script in a minute or two)
 #
-# The block is simulated once into WORKDIR/dortmund_<scale> (as tools/bench/dortmund_scaling.sh names it, so the
-# two share blocks) and reused; the run goes to WORKDIR/dortmund_<scale>/copc_run (removed first). Prints a
-# Markdown table. Needs /usr/bin/time and python3 with PyYAML (tools/install_deps.sh).
+# The block (PRESET, default dortmund) is simulated once into WORKDIR/<preset>_<scale> (as
+# tools/bench/dortmund_scaling.sh names the dortmund blocks, so the two share them) and reused; the run goes to
+# WORKDIR/<preset>_<scale>/copc_run (removed first). Prints a Markdown table. Needs /usr/bin/time and python3 with
+# PyYAML (tools/install_deps.sh).
 set -euo pipefail
 if [[ $# -lt 1 ]]; then
-  sed -n '2,14p' "$0"
+  sed -n '2,16p' "$0"
   exit 2
 fi
 work=$(realpath -m "$1")
@@ -25,14 +27,15 @@ shift $(( $# >= 2 ? 2 : 1 ))
 budgets=("$@")
 [[ ${#budgets[@]} -gt 0 ]] || budgets=(4 1 0.5)
 tile_m=${TILE_M:-250}
+preset=${PRESET:-dortmund}
 here=$(cd "$(dirname "$0")/../.." && pwd)
 sacfuse=${SACFUSE:-$here/build/bin/sacfuse}
-block="$work/dortmund_$scale"
+block="$work/${preset}_$scale"
 run="$block/copc_run"
 mkdir -p "$work"
 if [[ ! -f "$block/sacfuse.yaml" ]]; then
-  echo "== simulating dortmund at pixel scale $scale into $block" >&2
-  "$sacfuse" simulate --preset dortmund --seed 1 --pixel-scale "$scale" --no-normal-maps --out "$block" >&2
+  echo "== simulating $preset at pixel scale $scale into $block" >&2
+  "$sacfuse" simulate --preset "$preset" --seed 1 --pixel-scale "$scale" --no-normal-maps --out "$block" >&2
 fi
 
 # config FILE OUT SECTION.KEY=VALUE...: the block's config into FILE with output.dir OUT and the options given.
@@ -81,50 +84,57 @@ mkdir -p "$run"
 rows=()
 config "$run/untiled.yaml" "$run/untiled" output.format=copc tiling.tile_size_m=0
 echo "== fusing $block with output.format copc, untiled" >&2
-rows+=("$(row "sacfuse run, untiled" default "$(timed untiled "$sacfuse" run "$run/untiled.yaml")" \
-  "$(points "$run/untiled/fused.copc.laz")" "$(built "$run/untiled.log")")")
+t=$(timed untiled "$sacfuse" run "$run/untiled.yaml")
+rows+=("$(row "sacfuse run, untiled" default "$t" "$(points "$run/untiled/fused.copc.laz")" "$(built "$run/untiled.log")")")
 validate "$run/untiled/fused.copc.laz"
 rm -rf "$run/untiled"
-config "$run/run.yaml" "$run/out" output.format=copc tiling.tile_size_m="$tile_m"
+# Every config of the tiled run names its tile size: `sacfuse merge` must see the plan the run made.
+tiled=(tiling.tile_size_m="$tile_m")
+config "$run/run.yaml" "$run/out" output.format=copc "${tiled[@]}"
 echo "== fusing $block with output.format copc, $tile_m m tiles" >&2
-rows+=("$(row "sacfuse run, $tile_m m tiles (tiles + merge)" default "$(timed run "$sacfuse" run "$run/run.yaml")" \
-  "$(points "$run/out/fused.copc.laz")" "tiles $(python3 -c "import json,sys; r=json.load(open(sys.argv[1])); \
-s=r['stage_wall_seconds']; print(f\"{s['tiles']:.0f} s, merge {s['merge']:.0f} s\")" "$run/out/run_report.json"); \
-$(built "$run/run.log")")")
+t=$(timed run "$sacfuse" run "$run/run.yaml")
+stages=$(python3 -c "import json,sys; s=json.load(open(sys.argv[1]))['stage_wall_seconds']; \
+print(f\"tiles {s['tiles']:.0f} s, merge {s['merge']:.0f} s\")" "$run/out/run_report.json")
+rows+=("$(row "sacfuse run, $tile_m m tiles (tiles + merge)" default "$t" "$(points "$run/out/fused.copc.laz")" \
+  "$stages; $(built "$run/run.log")")")
 validate "$run/out/fused.copc.laz"
 ls "$run"/out/tiles/*.copc.laz > /dev/null
 cp "$run/out/fused.copc.laz" "$run/fused_from_run.copc.laz"
 for gb in "${budgets[@]}"; do
   echo "== sacfuse merge, output.format copc, resources.memory_gb $gb" >&2
-  config "$run/merge_$gb.yaml" "$run/out" output.format=copc resources.memory_gb="$gb"
+  config "$run/merge_$gb.yaml" "$run/out" output.format=copc resources.memory_gb="$gb" "${tiled[@]}"
   rm -f "$run/out/fused.copc.laz"
-  rows+=("$(row "sacfuse merge (COPC)" "$gb" "$(timed "merge_$gb" "$sacfuse" merge "$run/merge_$gb.yaml")" \
-    "$(points "$run/out/fused.copc.laz")" "$(built "$run/merge_$gb.log"); $(du -m "$run/out/fused.copc.laz" | cut -f1) MB")")
+  t=$(timed "merge_$gb" "$sacfuse" merge "$run/merge_$gb.yaml")
+  rows+=("$(row "sacfuse merge (COPC)" "$gb" "$t" "$(points "$run/out/fused.copc.laz")" \
+    "$(built "$run/merge_$gb.log"); $(du -m "$run/out/fused.copc.laz" | cut -f1) MB")")
   validate "$run/out/fused.copc.laz"
   cp "$run/out/fused.copc.laz" "$run/fused_$gb.copc.laz"
 done
 echo "== sacfuse merge, output.format laz" >&2
-config "$run/merge_laz.yaml" "$run/out" output.format=laz
-rows+=("$(row "sacfuse merge (LAZ, from the COPC tiles)" default "$(timed merge_laz "$sacfuse" merge "$run/merge_laz.yaml")" \
-  "$(points "$run/out/fused.laz")" "$(du -m "$run/out/fused.laz" | cut -f1) MB")")
+config "$run/merge_laz.yaml" "$run/out" output.format=laz "${tiled[@]}"
+t=$(timed merge_laz "$sacfuse" merge "$run/merge_laz.yaml")
+rows+=("$(row "sacfuse merge (LAZ, from the COPC tiles)" default "$t" "$(points "$run/out/fused.laz")" \
+  "$(du -m "$run/out/fused.laz" | cut -f1) MB")")
 
 # Killed half-way, then again: the same bytes as the uninterrupted merge with that budget.
 gb=${budgets[0]}
-wall=$(awk '{print $1}' "$run/merge_$gb.time")
+after=$(awk '{printf "%.2f", $1 / 2}' "$run/merge_$gb.time")
 rm -f "$run/out/fused.copc.laz"
 "$sacfuse" merge "$run/merge_$gb.yaml" > "$run/killed.log" 2>&1 &
 pid=$!
-sleep "$(python3 -c "print(max(1.0, $wall / 2))")"
-kill -9 "$pid" 2> /dev/null || true
+sleep "$after"
+killed=yes
+kill -9 "$pid" 2> /dev/null || killed="no (the merge had ended)"
 wait "$pid" 2> /dev/null || true
-left=$(ls -d "$run"/out/fused.copc.laz* 2> /dev/null | wc -l)
+left=$(find "$run/out" -maxdepth 1 -name "fused.copc.laz.tmp-*" | wc -l)
 "$sacfuse" merge "$run/merge_$gb.yaml" > "$run/resumed.log" 2>&1
+left_after=$(find "$run/out" -maxdepth 1 -name "fused.copc.laz.tmp-*" | wc -l)
 same=no
 [[ "$(digest "$run/out/fused.copc.laz")" == "$(digest "$run/fused_$gb.copc.laz")" ]] && same=yes
 echo "| scale $scale | budget GiB | wall s | CPU s | peak RSS MiB | points | notes |"
 echo "|---|---:|---:|---:|---:|---:|---|"
 printf '%s\n' "${rows[@]}"
 echo
-echo "merge killed after $(python3 -c "print(max(1.0, $wall / 2))") s ($left work files or folders left), run again:" \
-     "identical to the uninterrupted merge but for the creation date: $same"
+echo "merge killed after $after s: $killed ($left work files or folders left; $left_after after the next merge); run" \
+     "again: identical to the uninterrupted merge but for the creation date: $same"
 [[ $same == yes ]]
