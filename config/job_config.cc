@@ -16,6 +16,7 @@
 #include "io/crs.h"
 #include "io/input_file.h"
 #include "io/las_crs.h"
+#include "io/yaml_keys.h"
 
 namespace sacfuse {
 namespace {
@@ -171,10 +172,15 @@ JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source
   config.source_file = source_name;
   config.overrides = overrides;
   YAML::Node root;
+  int second_document_line = 0;
   try {
-    root = YAML::Load(yaml_text);
+    root = LoadOneYamlDocument(yaml_text, &second_document_line);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
+  }
+  if (second_document_line > 0) {
+    throw ConfigError(source_name + ":" + std::to_string(second_document_line) + ": " +
+                      YamlSecondDocumentProblem("a sacfuse config"));
   }
   KeyPlaces key_places;
   MakeOptionTable(&config).Parse(root, source_name, overrides, &key_places);
