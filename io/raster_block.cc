@@ -7,6 +7,7 @@
 
 #include "core/backproject.h"
 #include "core/error.h"
+#include "io/input_warnings.h"
 #include "io/rgb_image_file.h"
 #include "io/tiff_depth.h"
 #include "io/view_checks.h"
@@ -90,6 +91,12 @@ RasterBlock::RasterBlock(const std::string& camera_file, DepthKind depth_kind, c
   double deviation = 0.0;
   for (const double s : shifts) deviation += s - shifts[0];
   if (!shifts.empty()) scene_height_shift_m_ += deviation / static_cast<double>(shifts.size());
+  const size_t without_image = static_cast<size_t>(std::count_if(
+      file_.views.begin(), file_.views.end(), [](const CameraFileView& v) { return v.image_path.empty(); }));
+  if (without_image > 0) {
+    WarnAboutInput(camera_file_, std::to_string(without_image) + " of " + std::to_string(views_.size()) +
+                                     " views have no image_path: their points get no colour (mid grey)");
+  }
 }
 
 std::string RasterBlock::DepthMapPath(const View& view) const {

@@ -51,6 +51,9 @@ class RasterBlock : public DepthBlock {
   // of every view (8 x 8 short row segments of 32 pixels: at most 64 strips or tiles decoded per view), computed
   // once.
   std::vector<double> SceneHeights() const override;
+  std::string SceneHeightsSource() const override {
+    return file_.scene_heights_m.empty() ? "depth-map sample" : "camera file scene_heights_m";
+  }
 
  private:
   // Checks a raster's size against the view's image; returns the camera scaled to it.

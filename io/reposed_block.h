@@ -31,6 +31,7 @@ class ReposedBlock : public DepthBlock {
   }
   RgbImage ReadImage(const View& view) const override { return inner_->ReadImage(Inner(view)); }
   std::vector<double> SceneHeights() const override;
+  std::string SceneHeightsSource() const override { return inner_->SceneHeightsSource(); }
   bool HasConsistencyGraph(const View& view) const override { return inner_->HasConsistencyGraph(Inner(view)); }
   ConsistencyGraph ReadConsistencyGraph(const View& view) const override {
     return inner_->ReadConsistencyGraph(Inner(view));

@@ -90,6 +90,7 @@ ReportRun ParseRunReportJson(const std::string& text) {
       r.views.push_back(c);
     }
   }
+  if (j.contains("warnings")) r.input_warnings = j.at("warnings").get<std::vector<std::string>>();
   if (j.contains("sac")) {
     const auto& s = j["sac"];
     r.has_sac = true;

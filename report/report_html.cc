@@ -86,6 +86,9 @@ std::string Warnings(const ReportData& d) {
       << " tiles failed; " << d.cloud.name << " was not merged.</b> See the tile map below and rerun them with "
       << "<code>sacfuse run CONFIG --tiles ID,...</code>.</div>\n";
   }
+  for (const std::string& w : d.run.input_warnings) {
+    s << "<div class='warn'><b>Input:</b> " << EscapeHtml(w) << "</div>\n";
+  }
   for (const std::string& w : d.warnings) s << "<div class='warn'>" << EscapeHtml(w) << "</div>\n";
   return s.str();
 }
