@@ -233,5 +233,13 @@ TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
   EXPECT_EQ(ResultSettingsText(other), expected);
 }
 
+// Issue 50: --print-defaults said tile files stay uncompressed LAS; they are LAZ (tiles/tile_marker.h).
+TEST(OptionTableTest, PrintDefaultsSaysTilesAreLaz) {
+  const std::string text = DumpJobConfig(JobConfig(), true);
+  EXPECT_EQ(text.find("uncompressed LAS (intermediate"), std::string::npos) << text;
+  EXPECT_NE(text.find("tiled runs keep their tiles as LAZ whatever this says (DIR/tiles/<id>.laz"), std::string::npos)
+      << text;
+}
+
 }  // namespace
 }  // namespace sacfuse

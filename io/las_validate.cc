@@ -462,6 +462,15 @@ class Validator {
     PointTally t;
     try {
       LasReader reader(path_);
+      // The table ends the point data (EVLRs of LAS 1.4 follow it): a file that ends inside it was truncated, even
+      // though its missing last bytes (the coder's final zeros) decode as the zeros a reader supplies.
+      const uint64_t table_end = reader.laz_chunk_table_end();
+      const uint64_t limit = minor_ >= 4 && num_evlrs_ > 0 && evlr_start_ >= table_end ? evlr_start_ : file_size_;
+      if (table_end > limit) {
+        Add("LAZ", "the chunk table's coded entries end at byte " + std::to_string(table_end) + ", but the " +
+                       (limit == file_size_ ? "file ends at " : "first EVLR starts at ") + std::to_string(limit) +
+                       ": its last " + std::to_string(table_end - limit) + " bytes are missing (truncated)");
+      }
       std::vector<LasPoint> chunk;
       while (reader.Read(&chunk, kChunkRecords) > 0) {
         for (const LasPoint& p : chunk) {
