@@ -4,6 +4,7 @@
 
 #include "config/version.h"
 #include "io/atomic_file.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 
@@ -49,7 +50,7 @@ std::string EvalReportToJson(const EvalReport& r, int indent) {
     m.push_back({r.alignment(row, 0), r.alignment(row, 1), r.alignment(row, 2), r.alignment(row, 3)});
   }
   j["alignment"] = m;
-  return j.dump(indent);
+  return JsonText(j, indent);
 }
 
 void WriteEvalReportJson(const EvalReport& report, const std::string& path) {

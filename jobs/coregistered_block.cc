@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/view_identity.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 
@@ -156,7 +157,7 @@ std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::
     }
     file = ResultJson(*input, result, digest, config, decimation);
     std::filesystem::create_directories(config.output.dir);
-    WriteFileAtomically(path, file.dump(1) + "\n");
+    WriteFileAtomically(path, JsonText(file, 1) + "\n");
     for (const ViewCorrection& v : result.views) poses.push_back(v.cam_from_world);
   }
   Summarise(file, &out);

@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "io/file_checksum.h"
 #include "io/las_reader.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -104,7 +105,8 @@ TileInputs TileInputsOf(const PlannedTile& tile, const std::vector<View>& views,
   inputs.core = BoxOf(tile.core);
   inputs.halo = BoxOf(tile.halo);
   for (const TileViewWindow& tw : tile.views) {
-    inputs.views.push_back({tw.view, views.at(tw.view).name, tw.window, identities.at(tw.view)});
+    // The name as the marker carries it (io/json_text.h), so a name with bytes that are not UTF-8 compares equal.
+    inputs.views.push_back({tw.view, ValidUtf8(views.at(tw.view).name), tw.window, identities.at(tw.view)});
   }
   return inputs;
 }
@@ -154,7 +156,7 @@ void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& m) 
                             {"peak_rss_mib", m.peak_rss_mib},
                             {"finished_unix_ns", m.finished_unix_ns ? m.finished_unix_ns : now}};
   if (m.inputs) j["inputs"] = InputsJson(*m.inputs);
-  WriteFileAtomically(TileDonePath(tiles_dir, m.id), j.dump(2) + "\n");
+  WriteFileAtomically(TileDonePath(tiles_dir, m.id), JsonText(j, 2) + "\n");
 }
 
 std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, const std::string& id) {
@@ -232,7 +234,7 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
 
 void WriteTileFailedMarker(const std::string& tiles_dir, const std::string& id, const std::string& reason) {
   const nlohmann::json j = {{"id", id}, {"reason", reason}};
-  WriteFileAtomically(TileFailedPath(tiles_dir, id), j.dump(2) + "\n");
+  WriteFileAtomically(TileFailedPath(tiles_dir, id), JsonText(j, 2) + "\n");
 }
 
 std::optional<std::string> ReadTileFailedReason(const std::string& tiles_dir, const std::string& id) {
