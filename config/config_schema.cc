@@ -80,6 +80,12 @@ std::string NotAChoice(const std::string& v, const std::vector<std::string>& cho
   return "\"" + v + "\" is not one of {" + ChoiceList(choices) + "}";
 }
 
+// A problem of Entry::set after "<place><key>": a broken rule reads "<key> = <value>: <rule>" like the validators'
+// messages, a type error "<key>: ...".
+std::string KeyProblem(const std::string& place, const std::string& key, const std::string& problem) {
+  return problem.rfind("= ", 0) == 0 ? place + key + " " + problem : place + key + ": " + problem;
+}
+
 // The range rule on one number of `key`, or nothing.
 void CheckNumber(const std::string& key, double v, const OptionRange& range, const std::string& rule_prefix,
                  std::vector<OptionError>* errors) {
@@ -95,12 +101,11 @@ std::string FormatOptionError(const OptionError& e) {
 }
 
 std::string OptionErrorsMessage(const std::vector<OptionError>& errors, const std::string& source,
-                                const std::map<std::string, int>& key_lines) {
+                                const KeyPlaces& key_places) {
   std::string msg = source + ": invalid configuration";
   for (const OptionError& e : errors) {
-    const auto line = key_lines.find(e.key);
-    msg += "\n  " + (line == key_lines.end() ? "" : source + ":" + std::to_string(line->second) + ": ") +
-           FormatOptionError(e);
+    const auto place = key_places.find(e.key);
+    msg += "\n  " + (place == key_places.end() ? "" : place->second) + FormatOptionError(e);
   }
   return msg;
 }
@@ -301,8 +306,28 @@ const ConfigSchema::Entry* ConfigSchema::Find(const std::string& key) const {
   return nullptr;
 }
 
+bool ConfigSchema::IsSection(const std::string& key) const {
+  for (const auto& e : entries_) {
+    if (e.key.rfind(key + ".", 0) == 0) return true;
+  }
+  return false;
+}
+
+std::string ConfigSchema::AllowedKeys(const std::string& prefix) const {
+  std::set<std::string> known;
+  for (const auto& e : entries_) {
+    if (prefix.empty() || e.key.rfind(prefix + ".", 0) == 0) {
+      const std::string rest = prefix.empty() ? e.key : e.key.substr(prefix.size() + 1);
+      known.insert(rest.substr(0, rest.find('.')));
+    }
+  }
+  std::string list;
+  for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
+  return "allowed " + (prefix.empty() ? "at the top level" : "in " + prefix) + ": " + list;
+}
+
 void ConfigSchema::ParseMap(const YAML::Node& node, const std::string& prefix, const std::string& source,
-                            std::vector<std::string>* errors, std::map<std::string, int>* key_lines) const {
+                            std::vector<std::string>* errors, KeyPlaces* key_places) const {
   std::set<size_t> repeats;
   for (const YamlRepeatedKey& r : RepeatedYamlKeys(node)) {
     const std::string key = prefix.empty() ? r.key : prefix + "." + r.key;
@@ -315,49 +340,67 @@ void ConfigSchema::ParseMap(const YAML::Node& node, const std::string& prefix, c
     if (repeats.count(index++) != 0) continue;  // reported above; the first occurrence is parsed
     const std::string name = kv.first.Scalar();
     const std::string key = prefix.empty() ? name : prefix + "." + name;
-    if (key_lines != nullptr) (*key_lines)[key] = line;
-    const std::string where = source + ":" + std::to_string(line) + ": " + key + ": ";
+    const std::string place = source + ":" + std::to_string(line) + ": ";
+    if (key_places != nullptr) (*key_places)[key] = place;
     if (const Entry* e = Find(key)) {
-      if (auto err = e->set(kv.second); !err.empty()) {
-        // A broken rule reads "<key> = <value>: <rule>" like the validators' messages; a type error "<key>: ...".
-        errors->push_back(err.rfind("= ", 0) == 0 ? where.substr(0, where.size() - 2) + " " + err : where + err);
-      }
+      if (auto err = e->set(kv.second); !err.empty()) errors->push_back(KeyProblem(place, key, err));
       continue;
     }
-    // A section (prefix of some key)?
-    bool is_section = false;
-    for (const auto& e : entries_) is_section = is_section || e.key.rfind(key + ".", 0) == 0;
-    if (is_section) {
+    if (IsSection(key)) {
       if (!kv.second.IsMap()) {
-        errors->push_back(where + "expected a mapping (a section), got " + NodeKind(kv.second));
+        errors->push_back(place + key + ": expected a mapping (a section), got " + NodeKind(kv.second));
       } else {
-        ParseMap(kv.second, key, source, errors, key_lines);
+        ParseMap(kv.second, key, source, errors, key_places);
       }
       continue;
     }
-    std::set<std::string> known;
-    for (const auto& e : entries_) {
-      if (prefix.empty() || e.key.rfind(prefix + ".", 0) == 0) {
-        const std::string rest = prefix.empty() ? e.key : e.key.substr(prefix.size() + 1);
-        known.insert(rest.substr(0, rest.find('.')));
-      }
-    }
-    std::string list;
-    for (const auto& k : known) list += (list.empty() ? "" : ", ") + k;
-    errors->push_back(where + "unknown key; allowed " + (prefix.empty() ? "at the top level" : "in " + prefix) +
-                      ": " + list);
+    errors->push_back(place + key + ": unknown key; " + AllowedKeys(prefix));
   }
 }
 
+void ConfigSchema::ParseOverride(const ConfigOverride& o, std::vector<std::string>* errors,
+                                 KeyPlaces* key_places) const {
+  const std::string place = o.option + " ";
+  YAML::Node value;
+  if (o.literal || o.value.empty()) {
+    value = YAML::Node(o.value);  // `--set evaluation.mask=` is the empty string, as `mask: ""` in a file
+  } else {
+    try {
+      value = YAML::Load(o.value);
+    } catch (const YAML::ParserException& e) {
+      errors->push_back(place + o.key + ": " + Quote(o.value) + " is not valid YAML: " + e.msg);
+      return;
+    }
+  }
+  if (const Entry* e = Find(o.key)) {
+    if (key_places != nullptr) (*key_places)[o.key] = place;
+    if (auto err = e->set(value); !err.empty()) errors->push_back(KeyProblem(place, o.key, err));
+    return;
+  }
+  if (IsSection(o.key)) {
+    errors->push_back(place + o.key + ": a section, not a key: set its keys one by one (" + o.key + ".KEY=VALUE); " +
+                      AllowedKeys(o.key));
+    return;
+  }
+  // The deepest section the key starts with names the keys allowed there.
+  std::string prefix = o.key;
+  while (!prefix.empty() && !IsSection(prefix)) {
+    const size_t dot = prefix.rfind('.');
+    prefix = dot == std::string::npos ? "" : prefix.substr(0, dot);
+  }
+  errors->push_back(place + o.key + ": unknown key; " + AllowedKeys(prefix));
+}
+
 void ConfigSchema::Parse(const YAML::Node& root, const std::string& source,
-                         std::map<std::string, int>* key_lines) const {
+                         const std::vector<ConfigOverride>& overrides, KeyPlaces* key_places) const {
   std::vector<std::string> errors;
-  if (root.IsNull()) return;  // an empty file means all defaults
-  if (!root.IsMap()) {
+  // An empty file means all defaults.
+  if (!root.IsNull() && !root.IsMap()) {
     throw ConfigError(source + ":" + std::to_string(root.Mark().line + 1) +
                       ": the config must be a YAML mapping (key: value), got " + NodeKind(root));
   }
-  ParseMap(root, "", source, &errors, key_lines);
+  if (!root.IsNull()) ParseMap(root, "", source, &errors, key_places);
+  for (const ConfigOverride& o : overrides) ParseOverride(o, &errors, key_places);
   if (!errors.empty()) {
     std::string msg = source + ": invalid configuration";
     for (const auto& e : errors) msg += "\n  " + e;

@@ -10,6 +10,8 @@
 #include <utility>
 #include <vector>
 
+#include "config/config_override.h"
+
 namespace YAML {
 class Node;
 }
@@ -28,10 +30,13 @@ struct OptionError {
   std::string rule;   // e.g. "must be > 0"
 };
 std::string FormatOptionError(const OptionError& error);
-// "<source>: invalid configuration" and one indented line per error, "<source>:<line>: " before the errors of keys
-// present in `key_lines` (so range errors point at the line like type errors do).
+// Where each key given by the user was given, as the prefix of its messages: "<source>:<line>: " for a key of the
+// YAML file, "--set " for one set on the command line (ConfigOverride::option).
+using KeyPlaces = std::map<std::string, std::string>;
+// "<source>: invalid configuration" and one indented line per error, each key's place before the errors of keys
+// present in `key_places` (so range errors point at the line or option like type errors do).
 std::string OptionErrorsMessage(const std::vector<OptionError>& errors, const std::string& source,
-                                const std::map<std::string, int>& key_lines = {});
+                                const KeyPlaces& key_places = {});
 // Numbers in messages, as the rules print their bounds ("0.5", "1e-06").
 std::string OptionValueText(double value);
 
@@ -99,14 +104,15 @@ class ConfigSchema {
         [field, names](size_t i) { *field = names[i].first; }, choices, std::move(spec), doc);
   }
 
-  // Fills the bound fields from `root` (a YAML mapping). Collects every problem: unknown keys (with the keys
-  // allowed there), repeated keys, wrong types, values not in the choices, numbers that are not finite or exceed
-  // kMaxConfigMagnitude; each message is "<source>:<line>: <key>: <problem>" or, for a broken rule on a value,
-  // "<source>:<line>: <key> = <value>: <rule>".
+  // Fills the bound fields from `root` (a YAML mapping), then from `overrides` in order (each as if its key were
+  // in the file, later ones winning). Collects every problem: unknown keys (with the keys allowed there), repeated
+  // keys, wrong types, values not in the choices, numbers that are not finite or exceed kMaxConfigMagnitude; each
+  // message is "<place><key>: <problem>" or, for a broken rule on a value, "<place><key> = <value>: <rule>", the
+  // place being "<source>:<line>: " or the override's option ("--set ").
   // Throws ConfigError listing them all.
-  // `key_lines`, when given, receives the 1-based line of every key present in the YAML.
-  void Parse(const YAML::Node& root, const std::string& source,
-             std::map<std::string, int>* key_lines = nullptr) const;
+  // `key_places`, when given, receives the place of every key present in the YAML or overridden.
+  void Parse(const YAML::Node& root, const std::string& source, const std::vector<ConfigOverride>& overrides = {},
+             KeyPlaces* key_places = nullptr) const;
   // The range (or choices) of every key read by one of `scopes`, on the current field values.
   std::vector<OptionError> Check(uint32_t scopes) const;
   // YAML text of the current field values, sections in registration order; comments carry the docs.
@@ -138,8 +144,12 @@ class ConfigSchema {
   void AddNumber(const std::string& key, T* field, const char* type, int digits, OptionSpec spec,
                  const std::string& doc);
   const Entry* Find(const std::string& key) const;
+  bool IsSection(const std::string& key) const;
+  // "allowed in <prefix>: a, b" (or "allowed at the top level: ..."): the keys and sections directly under `prefix`.
+  std::string AllowedKeys(const std::string& prefix) const;
   void ParseMap(const YAML::Node& node, const std::string& prefix, const std::string& source,
-                std::vector<std::string>* errors, std::map<std::string, int>* key_lines) const;
+                std::vector<std::string>* errors, KeyPlaces* key_places) const;
+  void ParseOverride(const ConfigOverride& o, std::vector<std::string>* errors, KeyPlaces* key_places) const;
   std::vector<Entry> entries_;
 };
 

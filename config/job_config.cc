@@ -11,10 +11,13 @@
 
 #include "config/config_schema.h"
 #include "config/option_table.h"
+#include "config/version.h"
 #include "core/cell_window.h"
-#include "core/crs.h"
 #include "core/error.h"
+#include "io/crs.h"
 #include "io/input_file.h"
+#include "io/las_crs.h"
+#include "io/yaml_keys.h"
 
 namespace sacfuse {
 namespace {
@@ -37,12 +40,17 @@ bool IsAllowedLasScale(double scale) {
 
 std::string Number(double v) { return OptionValueText(v); }
 
-// input.cameras and input.depth_kind belong to format rasters.
+// input.cameras, input.depth_kind and input.cameras_crs belong to format rasters.
 void CheckRasterInputKeys(const InputOptions& in, std::vector<OptionError>* errors) {
   if (in.format != "rasters") {
     if (!in.cameras.empty()) errors->push_back({"input.cameras", in.cameras, "only read by input.format: rasters"});
     if (in.depth_kind != "z") {
       errors->push_back({"input.depth_kind", in.depth_kind, "only read by input.format: rasters"});
+    }
+    if (!in.cameras_crs.empty()) {
+      errors->push_back({"input.cameras_crs", in.cameras_crs,
+                         "only read by input.format: rasters (COLMAP and OpenMVS workspaces are in crs, shifted by "
+                         "input.origin_m)"});
     }
     return;
   }
@@ -57,15 +65,42 @@ void CheckRasterInputKeys(const InputOptions& in, std::vector<OptionError>* erro
 // The rules a key's range cannot say: between keys, or on a key's form (CRS, LAS scale, camera file). Like the
 // table's ranges, only for the keys of the method in use.
 void CheckCrossKeyRules(const JobConfig& c, std::vector<OptionError>* errors) {
-  try {
-    ParseProjectCrs(c.crs);
-  } catch (const Error& e) {
+  // A CRS's message starts with "<key> \"<text>\": "; the error repeats key and value itself.
+  auto crs_error = [&](const std::string& key, const std::string& text, const Error& e) {
     std::string why = e.what();
-    const std::string prefix = "crs \"" + c.crs + "\": ";
+    const std::string prefix = key + " \"" + text + "\": ";
     if (why.rfind(prefix, 0) == 0) why = why.substr(prefix.size());
-    errors->push_back({"crs", "\"" + c.crs + "\"", why});
+    errors->push_back({key, "\"" + text + "\"", why});
+  };
+  try {
+    const Crs crs = ParseProjectCrs(c.crs);
+    const int minor = c.output.las_version == "1.2" ? 2 : 4;
+    const std::string problem = LasCrsProblem(crs, minor);
+    if (!problem.empty()) {
+      errors->push_back({"output.las_version", c.output.las_version,
+                         problem + ": use output.las_version 1.4 (WKT) for crs \"" + c.crs + "\""});
+    }
+  } catch (const Error& e) {
+    crs_error("crs", c.crs, e);
+  }
+  try {
+    ParseInputCrs(c.input.cameras_crs);
+    if (!c.input.cameras_crs.empty() && c.crs.empty()) {
+      errors->push_back({"input.cameras_crs", "\"" + c.input.cameras_crs + "\"",
+                         "positions in another CRS need the project CRS to transform them into: set crs"});
+    }
+  } catch (const Error& e) {
+    crs_error("input.cameras_crs", c.input.cameras_crs, e);
+  }
+  if (c.input.origin_m.size() != 3) {
+    errors->push_back({"input.origin_m", std::to_string(c.input.origin_m.size()) + " numbers",
+                       "must be [east, north, height]: 3 numbers, metres"});
   }
   CheckRasterInputKeys(c.input, errors);
+  if (c.output.format == "copc" && c.output.las_version != "1.4") {
+    errors->push_back({"output.las_version", c.output.las_version,
+                       "must be 1.4 with output.format copc (COPC is LAS 1.4, point format 7)"});
+  }
   if (!IsAllowedLasScale(c.output.scale_m)) {
     errors->push_back({"output.scale_m", Number(c.output.scale_m),
                        "must be 10^k x {1, 0.5, 0.25} (e.g. 0.001, 0.0025, 0.01)"});
@@ -106,6 +141,31 @@ std::vector<OptionError> JobConfigErrors(const JobConfig& c) {
   return errors;
 }
 
+// `text` as one YAML comment line (line breaks of a path or --set value shown as \\n, so they cannot end it).
+std::string CommentLine(const std::string& text) {
+  std::string line = "# ";
+  for (const char c : text) line += c == '\n' ? "\\n" : c == '\r' ? "\\r" : std::string(1, c);
+  return line + "\n";
+}
+
+// The path keys, resolved against the config file's folder when given in the file and against the current
+// directory when given on the command line (ConfigOverride), as a user typing a path there means.
+std::vector<std::pair<const char*, std::string*>> PathFields(JobConfig* c) {
+  return {{"input.path", &c->input.path},
+          {"input.cameras", &c->input.cameras},
+          {"output.dir", &c->output.dir},
+          {"evaluation.reference", &c->evaluation.reference},
+          {"evaluation.mask", &c->evaluation.mask},
+          {"fusion.superpixel_cache_dir", &c->fusion.superpixel_cache_dir}};
+}
+
+bool Overridden(const std::vector<ConfigOverride>& overrides, const std::string& key) {
+  for (const ConfigOverride& o : overrides) {
+    if (o.key == key) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 bool DsmWanted(const JobConfig& config) {
@@ -119,29 +179,34 @@ void ValidateJobConfig(const JobConfig& c) {
   if (!errors.empty()) throw ConfigError(OptionErrorsMessage(errors, c.source_file.empty() ? "config" : c.source_file));
 }
 
-JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir) {
+JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir,
+                         const std::vector<ConfigOverride>& overrides) {
   JobConfig config;
   config.source_file = source_name;
+  config.overrides = overrides;
   YAML::Node root;
+  int second_document_line = 0;
   try {
-    root = YAML::Load(yaml_text);
+    root = LoadOneYamlDocument(yaml_text, &second_document_line);
   } catch (const YAML::ParserException& e) {
     throw ConfigError(source_name + ":" + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   }
-  std::map<std::string, int> key_lines;
-  MakeOptionTable(&config).Parse(root, source_name, &key_lines);
-  config.input.path = ResolvePath(config.input.path, base_dir);
-  config.input.cameras = ResolvePath(config.input.cameras, base_dir);
-  config.output.dir = ResolvePath(config.output.dir, base_dir);
-  config.evaluation.reference = ResolvePath(config.evaluation.reference, base_dir);
-  config.evaluation.mask = ResolvePath(config.evaluation.mask, base_dir);
-  config.fusion.superpixel_cache_dir = ResolvePath(config.fusion.superpixel_cache_dir, base_dir);
+  if (second_document_line > 0) {
+    throw ConfigError(source_name + ":" + std::to_string(second_document_line) + ": " +
+                      YamlSecondDocumentProblem("a sacfuse config"));
+  }
+  KeyPlaces key_places;
+  MakeOptionTable(&config).Parse(root, source_name, overrides, &key_places);
+  const std::string cwd = overrides.empty() ? "" : std::filesystem::current_path().string();
+  for (const auto& [key, field] : PathFields(&config)) {
+    *field = ResolvePath(*field, Overridden(overrides, key) ? cwd : base_dir);
+  }
   const std::vector<OptionError> errors = JobConfigErrors(config);
-  if (!errors.empty()) throw ConfigError(OptionErrorsMessage(errors, source_name, key_lines));
+  if (!errors.empty()) throw ConfigError(OptionErrorsMessage(errors, source_name, key_places));
   return config;
 }
 
-JobConfig LoadJobConfig(const std::string& path) {
+JobConfig LoadJobConfig(const std::string& path, const std::vector<ConfigOverride>& overrides) {
   std::ifstream in;
   try {
     in = OpenInputStream(path, "config file");
@@ -151,16 +216,25 @@ JobConfig LoadJobConfig(const std::string& path) {
   std::stringstream text;
   text << in.rdbuf();
   const auto base = std::filesystem::absolute(path).parent_path().string();
-  return ParseJobConfig(text.str(), path, base);
+  return ParseJobConfig(text.str(), path, base, overrides);
 }
 
 std::string DumpJobConfig(const JobConfig& config, bool with_comments) {
   JobConfig copy = config;
   std::string header;
   if (with_comments) {
-    header =
-        "# sacfuse run configuration. Every key is optional except input.path; the values shown are the defaults.\n"
-        "# Relative paths are resolved against the folder of this file.\n";
+    std::string origin = "The defaults";
+    if (!config.source_file.empty()) {
+      origin = "The configuration of " + config.source_file;
+      for (const ConfigOverride& o : config.overrides) {
+        origin += (&o == &config.overrides.front() ? " with " : " ") + o.Describe();
+      }
+      origin += ", every key as a run uses it";
+    }
+    header = CommentLine("sacfuse run configuration, written by " + FullVersionString() + ".") +
+             CommentLine(origin + ".") +
+             CommentLine("Every key is optional except input.path. Relative paths are resolved against the folder "
+                         "of this file.");
   }
   return header + MakeOptionTable(&copy).Dump(with_comments);
 }

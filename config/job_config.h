@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "config/config_override.h"
 #include "config/fusion_method_kind.h"
 #include "core/consistency_fusion.h"
 #include "core/coregistration.h"
@@ -27,11 +28,19 @@ struct InputOptions {
   // config file; "" = the cameras.yaml, cameras.yml or cameras.csv in `path`.
   std::string cameras;
   std::string depth_kind = "z";         // format rasters: z (along the optical axis) | range (along the ray), metres
+  // The input's coordinates are project-CRS coordinates minus this point (east, north, height; metres): a
+  // workspace shifted to a round local origin (COLMAP computes in float32). World = input + origin_m, in doubles.
+  // Applies to COLMAP and OpenMVS poses and to camera-file x_m/y_m/z_m (in input.cameras_crs when set).
+  std::vector<double> origin_m = {0.0, 0.0, 0.0};
+  // format rasters: the CRS of the camera file's positions (io/crs.h; x_m/y_m/z_m, or the datum of lat/lon/h);
+  // "" = the project CRS. Positions are transformed into `crs` through PROJ (io/camera_placement.h).
+  std::string cameras_crs;
 };
 
 struct OutputOptions {
   std::string dir = "sacfuse_out";      // output folder (fused.laz or fused.las, logs, effective config, run report)
   std::string format = "laz";           // laz (LASzip-compressed, io/laz_*.h) | las (uncompressed): DIR/fused.<format>
+                                        // | copc (io/copc_writer.h): DIR/fused.copc.laz
   std::string las_version = "1.4";      // 1.4 (point format 7) | 1.2 (point format 3)
   double scale_m = 0.001;               // LAS coordinate quantum, metres (10^k x {1, 0.5, 0.25})
   // The DSM raster product (docs/dsm-and-ortho.md; jobs/dsm_product.h): DIR/dsm.tif, a float32 Cloud Optimized
@@ -76,9 +85,9 @@ struct LogOptions {
 };
 
 struct JobConfig {
-  // Project CRS of the world coordinates (core/crs.h): "" = not georeferenced (local metres, no CRS in the LAS),
-  // "EPSG:326zz" / "EPSG:327zz" (WGS 84 / UTM zone zz N / S), "EPSG:258zz" (ETRS89 / UTM zone zz N, 28..38),
-  // "ENU:lat,lon,h" (local east-north-up frame at that origin: degrees, degrees, metres ellipsoidal).
+  // Project CRS of the world coordinates (io/crs.h, through PROJ): "" = not georeferenced (local metres, no CRS in
+  // the LAS), any metric projected CRS PROJ knows ("EPSG:25832"), a compound one with orthometric heights
+  // ("EPSG:2154+5720"), WKT1/WKT2/PROJJSON, or "ENU:lat,lon,h" (local east-north-up frame at that origin).
   std::string crs;
   InputOptions input;
   OutputOptions output;
@@ -89,21 +98,25 @@ struct JobConfig {
   EvaluationOptions evaluation;
   LogOptions log;
   std::string source_file;  // the YAML file this came from ("" for defaults)
+  std::vector<ConfigOverride> overrides;  // the keys the command line set on top of it, in order
 };
 
 // Whether the run writes the DSM: output.dsm on, or auto with a project CRS (a run in a CRS-less local frame, e.g.
 // an SfM reconstruction whose z need not point up, gets no DSM unless asked for).
 bool DsmWanted(const JobConfig& config);
 
-// Reads, type-checks and validates a YAML config. Unknown keys, wrong types and out-of-range values throw
-// ConfigError naming the file, line, key, value and rule (all problems at once). Relative paths are resolved
-// against the config file's folder.
-JobConfig LoadJobConfig(const std::string& path);
+// Reads, type-checks and validates a YAML config, with `overrides` (the command line's --set ...) applied on top
+// before validation. Unknown keys, wrong types and out-of-range values throw ConfigError naming the file, line (or
+// option), key, value and rule (all problems at once). Relative paths are resolved against the config file's
+// folder, those of overrides against the current directory.
+JobConfig LoadJobConfig(const std::string& path, const std::vector<ConfigOverride>& overrides = {});
 // Parses YAML text (for tests); `source_name` appears in messages. Paths are resolved against `base_dir`.
-JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir);
+JobConfig ParseJobConfig(const std::string& yaml_text, const std::string& source_name, const std::string& base_dir,
+                         const std::vector<ConfigOverride>& overrides = {});
 // Validation of values alone (after parsing or for configs built in code).
 void ValidateJobConfig(const JobConfig& config);
-// The config as YAML. With comments: every key documented with its default and unit (--print-defaults).
+// The config as YAML. With comments: a header naming the sacfuse version, the source file and the overrides, and
+// every key documented with its unit and rule (--print-defaults, sacfuse.effective.yaml).
 std::string DumpJobConfig(const JobConfig& config, bool with_comments);
 // Every key of the config with its value as YAML text ("fusion.tau_m" -> "2"), in schema order.
 std::vector<std::pair<std::string, std::string>> JobConfigValues(const JobConfig& config);

@@ -18,7 +18,8 @@ TEST(JobConfigCrsTest, DefaultsToNotGeoreferenced) {
 }
 
 TEST(JobConfigCrsTest, AcceptsTheSupportedForms) {
-  for (const std::string crs : {"EPSG:25832", "EPSG:32633", "EPSG:32733", "ENU:51.5,7.46,120", ""}) {
+  for (const std::string crs : {"EPSG:25832", "EPSG:32633", "EPSG:32733", "ENU:51.5,7.46,120", "", "EPSG:2154",
+                                "EPSG:2154+5720", "EPSG:5698"}) {
     const JobConfig c = ParseJobConfig("crs: \"" + crs + "\"\ninput: {path: ws}\n", "job.yaml", "/base");
     EXPECT_EQ(c.crs, crs);
   }
@@ -26,9 +27,12 @@ TEST(JobConfigCrsTest, AcceptsTheSupportedForms) {
 
 TEST(JobConfigCrsTest, RejectsOthersNamingKeyLineValueAndWhatIsSupported) {
   const std::string err = ErrorOf("input: {path: ws}\ncrs: EPSG:4326\n");
-  EXPECT_NE(err.find("job.yaml:2: crs = \"EPSG:4326\": EPSG code 4326 is not one of the supported"), std::string::npos)
+  EXPECT_NE(err.find("job.yaml:2: crs = \"EPSG:4326\": \"WGS 84\" is a geographic 2D CRS (latitude/longitude): the "
+                     "project CRS must be projected"),
+            std::string::npos)
       << err;
-  EXPECT_NE(err.find("EPSG:258zz"), std::string::npos) << err;
+  EXPECT_NE(err.find("crs takes"), std::string::npos) << err;
+  EXPECT_NE(err.find("EPSG:2154+5720"), std::string::npos) << err;
   const std::string enu = ErrorOf("crs: \"ENU:95,7,0\"\ninput: {path: ws}\n");
   EXPECT_NE(enu.find("job.yaml:1: crs = \"ENU:95,7,0\": ENU origin latitude must be in [-90, 90]"), std::string::npos)
       << enu;
@@ -39,8 +43,47 @@ TEST(JobConfigCrsTest, RejectsOthersNamingKeyLineValueAndWhatIsSupported) {
   // Built in code and validated.
   JobConfig c;
   c.input.path = "ws";
-  c.crs = "EPSG:25839";
+  c.crs = "EPSG:2263";  // feet
   EXPECT_THROW(ValidateJobConfig(c), ConfigError);
+}
+
+TEST(JobConfigCrsTest, Las12NeedsACrsItsGeoKeysCanName) {
+  const std::string custom = "crs: \"+proj=utm +zone=32 +ellps=GRS80 +units=m +type=crs\"\ninput: {path: ws}\n";
+  EXPECT_NO_THROW(ParseJobConfig(custom, "job.yaml", "/base"));
+  const std::string err = ErrorOf(custom + "output: {las_version: \"1.2\"}\n");
+  EXPECT_NE(err.find("output.las_version = 1.2: LAS 1.2 stores the CRS as GeoTIFF keys"), std::string::npos) << err;
+  EXPECT_NE(err.find("use output.las_version 1.4"), std::string::npos) << err;
+  EXPECT_NO_THROW(ParseJobConfig("crs: EPSG:2154+5720\ninput: {path: ws}\noutput: {las_version: \"1.2\"}\n",
+                                 "job.yaml", "/base"));
+}
+
+TEST(JobConfigCrsTest, OriginAndCamerasCrsKeys) {
+  const JobConfig c = ParseJobConfig(
+      "crs: EPSG:2154+5720\ninput: {path: ws, format: rasters, origin_m: [770000, 6277000, 0.5], "
+      "cameras_crs: \"EPSG:4979\"}\n",
+      "job.yaml", "/base");
+  EXPECT_EQ(c.input.origin_m, (std::vector<double>{770000, 6277000, 0.5}));
+  EXPECT_EQ(c.input.cameras_crs, "EPSG:4979");
+  EXPECT_EQ(ParseJobConfig("input: {path: ws}\n", "job.yaml", "/base").input.origin_m,
+            (std::vector<double>{0, 0, 0}));
+  const std::string two = ErrorOf("input: {path: ws, origin_m: [1, 2]}\n");
+  EXPECT_NE(two.find("job.yaml:1: input.origin_m = 2 numbers: must be [east, north, height]"), std::string::npos)
+      << two;
+  const std::string colmap = ErrorOf("crs: EPSG:25832\ninput: {path: ws, cameras_crs: \"EPSG:4979\"}\n");
+  EXPECT_NE(colmap.find("input.cameras_crs = EPSG:4979: only read by input.format: rasters"), std::string::npos)
+      << colmap;
+  const std::string no_crs = ErrorOf("input: {path: ws, format: rasters, cameras_crs: \"EPSG:4979\"}\n");
+  EXPECT_NE(no_crs.find("input.cameras_crs = \"EPSG:4979\": positions in another CRS need the project CRS"),
+            std::string::npos)
+      << no_crs;
+  const std::string bad = ErrorOf("crs: EPSG:25832\ninput: {path: ws, format: rasters, cameras_crs: \"EPSG:4978\"}\n");
+  EXPECT_NE(bad.find("input.cameras_crs = \"EPSG:4978\": \"WGS 84\" is a geocentric CRS"), std::string::npos) << bad;
+  // Both change the points: part of the result settings.
+  JobConfig a;
+  a.input.path = "ws";
+  JobConfig b = a;
+  b.input.origin_m = {100.0, 0.0, 0.0};
+  EXPECT_NE(ResultSettingsHash(a), ResultSettingsHash(b));
 }
 
 TEST(JobConfigCrsTest, PrintDefaultsShowsTheKeyAndItsDoc) {

@@ -80,6 +80,19 @@ TEST(JobConfigTest, BrokenYamlReportsTheLine) {
   EXPECT_NE(err.find("not valid YAML"), std::string::npos) << err;
 }
 
+// yaml-cpp reads the first document of a stream only: keys after a "---" line were silently ignored (issue 50:
+// tau_m stayed 2.0, exit 0). A second document is an error naming the file and its "---" line.
+TEST(JobConfigTest, SecondYamlDocumentIsAnErrorNamingItsLine) {
+  const std::string err = ErrorOf("input: {path: ws}\nfusion: {tau_m: 2.0}\n---\nfusion: {tau_m: 1.0}\n");
+  EXPECT_NE(err.find("job.yaml:3: a second YAML document starts here"), std::string::npos) << err;
+  EXPECT_NE(err.find("put them into the first document"), std::string::npos) << err;
+  const std::string after_start = ErrorOf("---\ninput: {path: ws}\n--- # more\nfusion: {tau_m: 1.0}\n");
+  EXPECT_NE(after_start.find("job.yaml:3: a second YAML document"), std::string::npos) << after_start;
+  // A leading "---" and an empty document after the only one are fine.
+  EXPECT_EQ(ParseJobConfig("---\ninput: {path: ws}\n", "job.yaml", "/b").input.path, "/b/ws");
+  EXPECT_EQ(ParseJobConfig("input: {path: ws}\n---\n", "job.yaml", "/b").input.path, "/b/ws");
+}
+
 TEST(JobConfigTest, DumpWithCommentsParsesBackToTheSameConfig) {
   JobConfig c;
   c.input.path = "/x/ws";

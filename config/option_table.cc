@@ -47,9 +47,10 @@ std::vector<std::pair<FusionMethodKind, std::string>> MethodChoices() {
 ConfigSchema MakeOptionTable(JobConfig* c) {
   ConfigSchema s;
   s.AddString("crs", &c->crs, Affects("-", AnyText()),
-              "project CRS of the coordinates, written into every LAS: \"\" = none (local metres) | EPSG:326zz / "
-              "EPSG:327zz (WGS 84 / UTM zone zz N / S) | EPSG:258zz (ETRS89 / UTM zone zz N, zz = 28..38) | "
-              "ENU:lat,lon,h (local east-north-up frame at that origin; degrees, metres)");
+              "project CRS of the coordinates (through PROJ), written into every LAS: \"\" = none (local metres) | "
+              "a projected CRS in metres, e.g. EPSG:25832 (z = ellipsoidal height) | projected + vertical for "
+              "orthometric heights, e.g. EPSG:2154+5720 | WKT1, WKT2, PROJJSON | ENU:lat,lon,h (local "
+              "east-north-up frame at that origin; degrees, metres)");
   s.AddString("input.format", &c->input.format, Affects("-", Choices({"colmap", "openmvs", "rasters"})),
               "input kind: colmap (a COLMAP dense workspace) | openmvs (a folder of OpenMVS depth%04u.dmap files) "
               "| rasters (float32 TIFF depth rasters + a camera file, see input.cameras)");
@@ -62,10 +63,18 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "cameras.csv in input.path");
   s.AddString("input.depth_kind", &c->input.depth_kind, Affects("-", Choices({"z", "range"})),
               "rasters: depth values are z (along the optical axis) | range (distance along the pixel's ray), metres");
+  s.AddDoubleList("input.origin_m", &c->input.origin_m, Affects("m", Required(AnyNumber())),
+                  "[east, north, height] added to the input's coordinates (poses, camera-file x_m/y_m/z_m) to give "
+                  "CRS coordinates: a workspace shifted to a local origin; metres, 3 numbers");
+  s.AddString("input.cameras_crs", &c->input.cameras_crs, Affects("-", AnyText()),
+              "rasters: CRS of the camera file's positions (projected, compound or geographic; as crs), "
+              "transformed into crs through PROJ; empty = crs");
   s.AddString("output.dir", &c->output.dir, Neutral("-", RequiredText()), "output folder (relative to this file)");
-  s.AddString("output.format", &c->output.format, Neutral("-", Choices({"laz", "las"})),
-              "point cloud format of DIR/fused.<format>: laz (LASzip-compressed, 50,000-point chunks) | las "
-              "(uncompressed); tile files stay uncompressed LAS (intermediate, read back by merge and report)");
+  s.AddString("output.format", &c->output.format, Neutral("-", Choices({"laz", "las", "copc"})),
+              "point cloud format: laz (DIR/fused.laz, LASzip-compressed, 50,000-point chunks) | las (DIR/fused.las, "
+              "uncompressed) | copc (DIR/fused.copc.laz, a Cloud Optimized Point Cloud viewers stream; LAS 1.4 "
+              "only; built out of core within resources.memory_gb). Tiled runs write their tiles as LAZ "
+              "(tiles/<id>.laz), as COPC for copc (tiles/<id>.copc.laz), and a tile index DIR/tiles.vpc");
   s.AddString("output.las_version", &c->output.las_version, Affects("-", Choices({"1.4", "1.2"})),
               "LAS version: 1.4 (point format 7) | 1.2 (format 3)");
   s.AddDouble("output.scale_m", &c->output.scale_m, Affects("m", Closed(1e-6, 1.0)),

@@ -41,9 +41,9 @@ TEST(OptionTableTest, EveryKeyOnceWithDocUnitAndRangeOrChoices) {
       free_text.insert(row.key);
     }
   }
-  // Free text only for paths and the CRS (its form is a rule of its own in config/job_config.cc).
-  EXPECT_EQ(free_text, (std::set<std::string>{"crs", "input.path", "input.cameras", "output.dir",
-                                                "fusion.superpixel_cache_dir", "evaluation.reference",
+  // Free text only for paths and the CRSs (their form is a rule of its own in config/job_config.cc).
+  EXPECT_EQ(free_text, (std::set<std::string>{"crs", "input.path", "input.cameras", "input.cameras_crs",
+                                                "output.dir", "fusion.superpixel_cache_dir", "evaluation.reference",
                                                 "evaluation.mask"}));
   // The values of the default config are the structs' defaults, as JobConfigValues and --print-defaults show them.
   const auto values = JobConfigValues(JobConfig());
@@ -85,7 +85,7 @@ TEST(OptionTableTest, RangeErrorsAreStructured) {
   // Formatted once, in the style of every config message.
   EXPECT_EQ(FormatOptionError(errors[2]), "fusion.tau_m = 0: must be > 0");
   EXPECT_EQ(FormatOptionError(errors[0]), "input.path is empty: a value is required");
-  EXPECT_EQ(OptionErrorsMessage({errors[2]}, "job.yaml", {{"fusion.tau_m", 7}}),
+  EXPECT_EQ(OptionErrorsMessage({errors[2]}, "job.yaml", {{"fusion.tau_m", "job.yaml:7: "}}),
             "job.yaml: invalid configuration\n  job.yaml:7: fusion.tau_m = 0: must be > 0");
   // Configs built in code reach the same rules through ValidateJobConfig.
   c.input.path = "/ws";
@@ -189,7 +189,8 @@ TEST(OptionTableTest, FusionMethodIsParsedOnceFromOneNameTable) {
 TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
   const std::string expected =
       "crs: \"\"\ninput.format: \"colmap\"\ninput.path: \"\"\ninput.depth_type: \"geometric\"\ninput.cameras: \"\"\n"
-      "input.depth_kind: \"z\"\noutput.las_version: \"1.4\"\noutput.scale_m: 0.001\n"
+      "input.depth_kind: \"z\"\ninput.origin_m: [0.0, 0.0, 0.0]\ninput.cameras_crs: \"\"\n"
+      "output.las_version: \"1.4\"\noutput.scale_m: 0.001\n"
       // coregistration.* (twentieth session): a new stage that changes the points, so tiled runs of older
       // versions are recomputed, not resumed.
       "coregistration.enabled: true\ncoregistration.max_pixels_per_view: 250000\n"
@@ -230,6 +231,14 @@ TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
   other.evaluation.gsd_m = 0.2;
   other.log.level = "debug";
   EXPECT_EQ(ResultSettingsText(other), expected);
+}
+
+// Issue 50: --print-defaults said tile files stay uncompressed LAS; they are LAZ (tiles/tile_marker.h).
+TEST(OptionTableTest, PrintDefaultsSaysTilesAreLaz) {
+  const std::string text = DumpJobConfig(JobConfig(), true);
+  EXPECT_EQ(text.find("uncompressed LAS (intermediate"), std::string::npos) << text;
+  EXPECT_NE(text.find("tiled runs keep their tiles as LAZ whatever this says (DIR/tiles/<id>.laz"), std::string::npos)
+      << text;
 }
 
 }  // namespace

@@ -11,7 +11,10 @@ std::string InOutputDir(const JobConfig& config, const std::string& name) {
 
 }  // namespace
 
-std::string FusedLasPath(const JobConfig& config) { return InOutputDir(config, "fused." + config.output.format); }
+std::string FusedLasPath(const JobConfig& config) {
+  return InOutputDir(config, config.output.format == "copc" ? "fused.copc.laz" : "fused." + config.output.format);
+}
+std::string TileIndexPath(const JobConfig& config) { return InOutputDir(config, "tiles.vpc"); }
 std::string EffectiveConfigPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.effective.yaml"); }
 std::string RunReportPath(const JobConfig& config) { return InOutputDir(config, "run_report.json"); }
 std::string EvalJsonPath(const JobConfig& config) { return InOutputDir(config, "eval.json"); }

@@ -1,7 +1,8 @@
 #pragma once
 // Where a job's outputs live, one function per file or folder under output.dir (every other file names them
 // through these):
-//   DIR/fused.laz | fused.las   the fused cloud (output.format)
+//   DIR/fused.laz | fused.las | fused.copc.laz   the fused cloud (output.format)
+//   DIR/tiles.vpc               tiled runs: the tile files as a virtual point cloud (io/vpc_writer.h)
 //   DIR/sacfuse.effective.yaml  the config actually used
 //   DIR/run_report.json         numbers of the run
 //   DIR/eval.json               scores against evaluation.reference (eval/eval_runner.h)
@@ -21,7 +22,8 @@
 
 namespace sacfuse {
 
-std::string FusedLasPath(const JobConfig& config);  // DIR/fused.<output.format>
+std::string FusedLasPath(const JobConfig& config);  // DIR/fused.laz, fused.las or fused.copc.laz (output.format)
+std::string TileIndexPath(const JobConfig& config);  // DIR/tiles.vpc
 std::string EffectiveConfigPath(const JobConfig& config);
 std::string RunReportPath(const JobConfig& config);
 std::string EvalJsonPath(const JobConfig& config);

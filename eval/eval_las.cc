@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "io/geo_mask_io.h"
+#include "io/input_file.h"
 #include "io/las_reader.h"
 #include "eval/eval.h"
 
@@ -18,8 +19,7 @@ namespace {
 // point count); every failure but a thrown InputError or bad_alloc becomes an InputError naming the file.
 void ForEachLasChunk(const std::string& path, const std::function<void(uint64_t)>& on_count,
                      const std::function<void(const std::vector<LasPoint>&)>& chunk) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw InputError(path, "no such LAS file");
+  CheckInputFile(path, "LAS file");  // the one gate (io/input_file.h): missing, a FIFO, a folder, a link loop...
   try {
     LasReader reader(path);
     if (on_count) on_count(reader.header().point_count);

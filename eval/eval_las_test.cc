@@ -1,3 +1,5 @@
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
 
@@ -164,6 +166,31 @@ TEST_F(EvaluateLasFilesTest, BadFilesAreNamed) {
   const std::string empty = (dir_ / "empty.las").string();
   WriteLas(empty, {}, false);
   ExpectInputErrorNaming(res_path_, empty, empty);  // a reference without points
+}
+
+// Issue 50: a FIFO, a folder and a symbolic-link loop were all "no such LAS file"; the one gate for inputs
+// (io/input_file.h) says what each is, and a FIFO never blocks.
+TEST_F(EvaluateLasFilesTest, WhatIsNotALasFileIsNamedForWhatItIs) {
+  const auto message = [&](const std::string& bad) {
+    try {
+      EvaluateLasFiles(bad, ref_path_, EvalOptions{});
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.file(), bad);
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "no InputError for " << bad;
+    return std::string();
+  };
+  const std::string fifo = (dir_ / "fifo.las").string();
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  EXPECT_NE(message(fifo).find("it is a FIFO (named pipe), not a regular file"), std::string::npos);
+  const std::string folder = (dir_ / "folder.las").string();
+  std::filesystem::create_directory(folder);
+  EXPECT_NE(message(folder).find("it is a directory, not a regular file"), std::string::npos);
+  const std::string loop = (dir_ / "loop.las").string();
+  std::filesystem::create_symlink(loop, loop);
+  EXPECT_NE(message(loop).find("Too many levels of symbolic links"), std::string::npos) << message(loop);
+  EXPECT_NE(message((dir_ / "nope.las").string()).find("missing LAS file: it does not exist"), std::string::npos);
 }
 
 }  // namespace

@@ -2,12 +2,15 @@
 
 #include <nlohmann/json.hpp>
 
+#include "config/version.h"
 #include "io/atomic_file.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 
 std::string EvalReportToJson(const EvalReport& r, int indent) {
   nlohmann::json j;
+  j["version"] = FullVersionString();
   nlohmann::json scores = nlohmann::json::array();
   for (const ThresholdScore& s : r.scores) {
     scores.push_back({{"tau_m", s.tau_m},
@@ -59,7 +62,7 @@ std::string EvalReportToJson(const EvalReport& r, int indent) {
     j["dsm"] = {{"file", r.dsm->dsm_path}, {"cell_m", r.dsm->cell_m}, {"gsd_m", r.dsm->gsd_m},
                 {"all", stats(r.dsm->all)}, {"by_class", by_class}};
   }
-  return j.dump(indent);
+  return JsonText(j, indent);
 }
 
 void WriteEvalReportJson(const EvalReport& report, const std::string& path) {

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "config/version.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
@@ -41,6 +42,7 @@ TEST(EvalReportJsonTest, RoundTripsTheNumbers) {
   EXPECT_TRUE(j["aligned"].get<bool>());
   EXPECT_DOUBLE_EQ(j["alignment"][0][3].get<double>(), 0.4);
   EXPECT_DOUBLE_EQ(j["alignment"][3][3].get<double>(), 1.0);
+  EXPECT_EQ(j["version"].get<std::string>(), FullVersionString());  // which sacfuse scored
 }
 
 TEST(EvalReportJsonTest, WritesAFileAndTheTableShowsPercentages) {

@@ -262,12 +262,19 @@ void RefuseRepeatedKeys(const std::string& path, const YAML::Node& map, const st
 
 CameraFile ReadYaml(const std::string& path) {
   YAML::Node root;
+  int second_document_line = 0;
   try {
-    root = YAML::LoadFile(path);
+    std::ostringstream text;
+    text << OpenInputStream(path, "camera file").rdbuf();
+    root = LoadOneYamlDocument(text.str(), &second_document_line);
   } catch (const YAML::ParserException& e) {
     throw InputError(path, "line " + std::to_string(e.mark.line + 1) + ": not valid YAML: " + e.msg);
   } catch (const YAML::Exception& e) {
     throw InputError(path, std::string("cannot read: ") + e.what());
+  }
+  if (second_document_line > 0) {
+    throw InputError(path, "line " + std::to_string(second_document_line) + ": " +
+                               YamlSecondDocumentProblem("a camera file"));
   }
   if (!root.IsMap()) throw InputError(path, "expected a YAML map with a `views:` list");
   RefuseRepeatedKeys(path, root, "");
@@ -474,6 +481,10 @@ CameraFile ReadCameraFile(const std::string& path) {
   const CameraFileFormat format = CameraFileFormatOf(path);
   CheckInputFile(path, "camera file");
   return format == CameraFileFormat::kYaml ? ReadYaml(path) : ReadCsv(path);
+}
+
+std::string CameraFileViewText(const CameraFileView& v) {
+  return (v.line > 0 ? "line " + std::to_string(v.line) + ": " : std::string()) + "view \"" + v.image + "\"";
 }
 
 }  // namespace sacfuse

@@ -19,7 +19,8 @@
 //                  cx_px = width_px / 2 + ppx_mm / pitch_mm and cy_px = height_px / 2 - ppy_mm / pitch_mm
 //                  (ppx_mm, ppy_mm default to 0)
 //   position, one of
-//     x_m, y_m, z_m              projection centre in the project CRS (config key `crs`), metres
+//     x_m, y_m, z_m              projection centre in the project CRS (config key `crs`), metres, or in
+//                                input.cameras_crs, offset by input.origin_m (io/camera_placement.h)
 //     lat_deg, lon_deg, h_m      geodetic latitude/longitude (degrees, on the CRS's datum) and ellipsoidal
 //                                height (metres); needs the config key `crs`
 //   attitude, one of
@@ -29,7 +30,7 @@
 //                  INTO the attitude frame (image to object)
 //   attitude_frame grid: the project CRS's axes (x east/grid east, y grid north, z up)
 //                  local_enu: east-north-up at the camera's position (true north; as GNSS/IMU systems give
-//                  it); turned into the project frame with core/crs.h's ProjectFromLocalEnuRotation (needs `crs`)
+//                  it); turned into the project frame with io/crs.h's ProjectFromLocalEnuRotation (needs `crs`)
 //                  Default: local_enu for geodetic positions, grid for project positions.
 //
 // YAML: a top-level map with `views:` (a list of maps of the fields above), optional `cameras:` (a map from an id
@@ -75,6 +76,9 @@ struct CameraFile {
 
 // Reads a camera file (format from the extension). Throws InputError naming the file.
 CameraFile ReadCameraFile(const std::string& path);
+
+// A view as messages name it: "line 12: view \"nadir/0005.jpg\"" ("view ..." alone when built in code).
+std::string CameraFileViewText(const CameraFileView& view);
 
 struct CameraFileWriteOptions {
   bool rotation_matrix = false;  // write r11..r33 (else omega_deg, phi_deg, kappa_deg)

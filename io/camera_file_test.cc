@@ -221,6 +221,8 @@ TEST(CameraFileTest, ErrorsNameFileLineViewAndField) {
   ExpectError(WriteText(dir, "heights.yaml", head + pose + "}\nscene_heights_m: [1, x2]\n"),
               {"line 3", "scene_heights_m", "\"x2\" is not a finite number"});
   ExpectError(WriteText(dir, "syntax.yaml", "views:\n  - {image: a.jpg\n  - ]\n"), {"not valid YAML"});
+  ExpectError(WriteText(dir, "twodocs.yaml", head + pose + "}\n---\nversion: 2\n"),
+              {"line 3", "a second YAML document starts here", "a camera file holds one document"});
   ExpectError(
       WriteText(dir, "lat.yaml", head + "lat_deg: 91, lon_deg: 2, h_m: 3, omega_deg: 0, phi_deg: 0, kappa_deg: 0}\n"),
       {"lat_deg", "outside [-90, 90]"});

@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/colmap_array.h"
 #include "io/input_file.h"
+#include "io/input_warnings.h"
 #include "io/rgb_image_file.h"
 #include "io/view_checks.h"
 
@@ -245,7 +246,24 @@ std::vector<double> ColmapWorkspace::SceneHeights() const {
   for (const auto& [id, p] : model_.points3D) {
     if (std::isfinite(p.xyz.z())) z.push_back(p.xyz.z());
   }
-  return z;
+  if (!z.empty()) return z;
+  // Without sparse points the block's height range would fall back to the config's tiling.z_min_m/z_max_m, which
+  // need not hold the scene (footprints, tiles and windows then miss parts of it): the depth maps say where it is.
+  std::call_once(heights_once_, [this] {
+    sampled_heights_ = SampleDepthMapHeights(*this);
+    WarnAboutInput(SparseFile(dir_, "points3D"),
+                   "the sparse model has no points; the block's height range is taken from " +
+                       std::to_string(sampled_heights_.size()) + " depth-map pixels sampled over the " +
+                       std::to_string(views_.size()) + " views instead");
+  });
+  return sampled_heights_;
+}
+
+std::string ColmapWorkspace::SceneHeightsSource() const {
+  for (const auto& [id, p] : model_.points3D) {
+    if (std::isfinite(p.xyz.z())) return "sparse points";
+  }
+  return "depth-map sample (the sparse model has no points)";
 }
 
 NormalMap ColmapWorkspace::ReadNormalMap(const View& view) const {

@@ -4,6 +4,7 @@
 //   stereo/depth_maps/<name>.{geometric|photometric}.bin, stereo/normal_maps/<name>.<type>.bin,
 //   stereo/fusion.cfg (one image name per line; when present, only those images are used, in that order).
 // <name> may contain sub-folders.
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -38,8 +39,10 @@ class ColmapWorkspace : public DepthBlock {
   DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override;
   NormalMap ReadNormalMap(const View& view) const;
   RgbImage ReadImage(const View& view) const override;
-  // z of the sparse model's points.
+  // z of the sparse model's points; a model without points (an empty points3D file) gives a sample of the depth
+  // maps instead (SampleDepthMapHeights), with a warning naming the file (io/input_warnings.h).
   std::vector<double> SceneHeights() const override;
+  std::string SceneHeightsSource() const override;
 
   // Dense-matching consistency (stereo/consistency_graphs/<name>.<type>.bin), when the input has it. COLMAP's
   // image indices (images order of the sparse model) are mapped to view indices; images not used are dropped.
@@ -53,6 +56,8 @@ class ColmapWorkspace : public DepthBlock {
   ColmapModel model_;
   std::vector<View> views_;
   std::vector<uint32_t> model_index_to_view_;  // images order of the sparse model -> view index (or UINT32_MAX)
+  mutable std::once_flag heights_once_;         // a model without points: the depth sample, taken once
+  mutable std::vector<double> sampled_heights_;
 };
 
 // Writes stereo/fusion.cfg and stereo/patch-match.cfg for the given image names.

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/unique_file.h"
 
 namespace sacfuse {
 namespace {
@@ -18,12 +19,7 @@ namespace {
 constexpr char kMagic[8] = {'S', 'A', 'C', 'R', 'G', 'B', '0', '1'};
 constexpr uint64_t kHeaderBytes = 24;
 
-struct FileCloser {
-  void operator()(std::FILE* f) const {
-    if (f != nullptr) std::fclose(f);
-  }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
+using File = UniqueFile;
 
 void PutU32(unsigned char* p, uint32_t v) {
   for (int i = 0; i < 4; ++i) p[i] = static_cast<unsigned char>(v >> (8 * i));

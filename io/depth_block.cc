@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/backproject.h"
 #include "core/error.h"
 #include "io/input_warnings.h"
 
@@ -9,6 +10,27 @@ namespace sacfuse {
 
 ConsistencyGraph DepthBlock::ReadConsistencyGraph(const View& view) const {
   throw InputError(source(), "this input has no dense-matching consistency graphs (view \"" + view.name + "\")");
+}
+
+std::vector<double> SampleDepthMapHeights(const DepthBlock& input) {
+  constexpr int kRows = 16, kColumns = 64;
+  std::vector<double> z;
+  for (const View& view : input.views()) {
+    const DepthRasterSize size = input.DepthSize(view);
+    const PinholeCamera depth_camera = view.camera.Scaled(size.width, size.height);
+    const Rigid3d world_from_cam = view.cam_from_world.Inverse();
+    const int rows = std::min(kRows, size.height), cols = std::min(kColumns, size.width);
+    for (int k = 0; k < rows; ++k) {
+      const int row = static_cast<int>((k + 0.5) * size.height / rows);
+      const DepthMap line = input.ReadDepthWindow(view, PixelWindow{row, row + 1, 0, size.width});
+      for (int j = 0; j < cols; ++j) {
+        const int col = static_cast<int>((j + 0.5) * size.width / cols);
+        const float d = line.at(0, col);
+        if (IsValidDepth(d)) z.push_back(DepthPixelToWorld(depth_camera, world_from_cam, col, row, d).z());
+      }
+    }
+  }
+  return z;
 }
 
 DepthMap WarnIfNoValidDepth(DepthMap depth, const View& view, const std::string& path) {

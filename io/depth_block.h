@@ -47,11 +47,18 @@ class DepthBlock {
   // Heights (world z, metres) of scene points the input knows besides the depth maps (e.g. sparse tie points),
   // used to bound the block's height range when planning tiles; empty when the format has none.
   virtual std::vector<double> SceneHeights() const { return {}; }
+  // Where SceneHeights come from, for the log and plan.json ("sparse points", "depth-map sample", ...).
+  virtual std::string SceneHeightsSource() const { return "sparse points"; }
 
   // Dense-matching consistency graphs (which views agree with each pixel), when the input has them.
   virtual bool HasConsistencyGraph(const View& /*view*/) const { return false; }
   virtual ConsistencyGraph ReadConsistencyGraph(const View& view) const;
 };
+
+// Heights (world z, metres) of a sample of the views' valid depth pixels: in each view 16 rows evenly spaced, 64
+// columns of each, read by window (DepthSize, ReadDepthWindow). The scene heights of inputs that have no other
+// (OpenMVS, a COLMAP model without sparse points), for the block's height range (tiles/tile_plan.h).
+std::vector<double> SampleDepthMapHeights(const DepthBlock& input);
 
 // For the readers of whole depth maps: warns (io/input_warnings.h) naming the view and `path` when `depth` has no
 // valid pixel (the view then adds no points); returns `depth`.

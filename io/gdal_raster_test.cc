@@ -9,10 +9,9 @@
 
 #include <gtest/gtest.h>
 
-#include "core/crs.h"
 #include "core/error.h"
+#include "io/crs_wkt.h"
 #include "io/raster_assembly.h"
-#include "io/raster_crs.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
@@ -52,7 +51,7 @@ TEST(GdalRasterTest, IntermediateAndCogFilesReadBackWithTheirGeoreferenceNodataA
   v[w.Index(w.col0 + 5, w.row0 + 7)] = kNan;
   RasterFormat format;
   format.nodata = kNan;
-  format.crs_wkt = RasterCrsWkt(ParseProjectCrs("EPSG:25832"));
+  format.crs_wkt = ProjectCrsWkt("EPSG:25832", CrsWktDialect::kGdal);
   for (const RasterLayout layout : {RasterLayout::kIntermediate, RasterLayout::kCog}) {
     const std::string path = (dir / (layout == RasterLayout::kCog ? "cog.tif" : "raw.tif")).string();
     WriteRasterFile(path, w, format, v.data(), layout);

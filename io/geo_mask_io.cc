@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/input_file.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 namespace {
@@ -30,7 +31,7 @@ void WriteGeoMask(const std::string& png_path, const GeoMask& mask, const std::s
   WriteFileAtomically(png_path, std::string(png.begin(), png.end()));
   nlohmann::json j = {{"origin_x", mask.origin_x}, {"origin_y", mask.origin_y}, {"cell_size_m", mask.cell_size_m},
                       {"width", mask.width},       {"height", mask.height},     {"crs", crs}};
-  WriteFileAtomically(SidecarPath(png_path), j.dump(2) + "\n");
+  WriteFileAtomically(SidecarPath(png_path), JsonText(j, 2) + "\n");
 }
 
 GeoMask ReadGeoMask(const std::string& png_path) {

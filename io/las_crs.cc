@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "io/crs_impl.h"
 #include "io/las_format.h"
 #include "io/wkt1.h"
 
@@ -52,6 +53,7 @@ std::string GeoKeyName(uint16_t id) {
     case kGeoKeyGeographicType: return "GeographicTypeGeoKey";
     case kGeoKeyProjectedCsType: return "ProjectedCSTypeGeoKey";
     case kGeoKeyProjLinearUnits: return "ProjLinearUnitsGeoKey";
+    case kGeoKeyVerticalCsType: return "VerticalCSTypeGeoKey";
     case kGeoKeyVerticalUnits: return "VerticalUnitsGeoKey";
     default: return "GeoKey " + std::to_string(id);
   }
@@ -72,23 +74,33 @@ int CountProjectionRecords(const LasHeader& header, uint16_t record_id) {
 
 }  // namespace
 
-LasCrsRecords LasCrsVlrs(const ProjectCrs& crs, int version_minor) {
+std::string LasCrsProblem(const Crs& crs, int version_minor) {
   if (version_minor != 2 && version_minor != 4) {
-    throw Error("LAS CRS records: LAS 1." + std::to_string(version_minor) + " is not written (1.2 or 1.4)");
+    return "LAS 1." + std::to_string(version_minor) + " is not written (1.2 or 1.4)";
   }
+  return version_minor == 2 ? crs.impl().las12_problem : std::string();
+}
+
+LasCrsRecords LasCrsVlrs(const Crs& crs, int version_minor) {
+  if (version_minor != 2 && version_minor != 4) throw Error("LAS CRS records: " + LasCrsProblem(crs, version_minor));
   LasCrsRecords out;
   if (!crs.georeferenced()) return out;
   if (version_minor == 4) {
-    const std::string wkt = ProjectCrsWkt1(crs);
+    const std::string& wkt = crs.impl().wkt1_las;
+    if (wkt.empty()) throw Error("LAS CRS records: " + crs.key() + " \"" + crs.text() + "\" has no WKT1");
     std::vector<uint8_t> data(wkt.begin(), wkt.end());
     data.push_back('\0');  // NUL-terminated, as the spec asks
     out.vlrs.push_back(ProjectionVlr(lf::kWktRecordId, "OGC coordinate system WKT", std::move(data)));
     out.global_encoding_bits = kLasGlobalEncodingWktBit;
     return out;
   }
-  const std::string citation = crs.kind == ProjectCrs::Kind::kUtm
-                                   ? crs.Name() + " (EPSG:" + std::to_string(crs.epsg) + "), ellipsoidal heights, metre"
-                                   : "sacfuse " + crs.Name() + " (WGS 84 ellipsoid), metre";
+  const std::string problem = LasCrsProblem(crs, version_minor);
+  if (!problem.empty()) throw Error("LAS CRS records: " + crs.key() + " \"" + crs.text() + "\": " + problem);
+  const bool projected = crs.kind() == Crs::Kind::kProjected;
+  const std::string citation =
+      projected ? crs.Name() + " (" + crs.Code() + "), " +
+                      (crs.orthometric() ? crs.HeightName() : std::string("ellipsoidal heights")) + ", metre"
+                : "sacfuse " + crs.Name() + " (WGS 84 ellipsoid), metre";
   std::vector<GeoKey> keys;
   GeoKey cite;
   cite.id = kGeoKeyCitation;
@@ -96,10 +108,11 @@ LasCrsRecords LasCrsVlrs(const ProjectCrs& crs, int version_minor) {
   cite.count = static_cast<uint16_t>(citation.size() + 1);  // including the '|' terminator
   cite.value = 0;
   keys.push_back(cite);
-  if (crs.kind == ProjectCrs::Kind::kUtm) {
+  if (projected) {
     keys.push_back(Inline(kGeoKeyModelType, kModelTypeProjected));
-    keys.push_back(Inline(kGeoKeyProjectedCsType, static_cast<uint16_t>(crs.epsg)));
+    keys.push_back(Inline(kGeoKeyProjectedCsType, static_cast<uint16_t>(crs.horizontal_epsg())));
     keys.push_back(Inline(kGeoKeyProjLinearUnits, kEpsgMetre));
+    if (crs.orthometric()) keys.push_back(Inline(kGeoKeyVerticalCsType, static_cast<uint16_t>(crs.vertical_epsg())));
   } else {
     keys.push_back(Inline(kGeoKeyModelType, kUserDefined));
   }
@@ -112,7 +125,7 @@ LasCrsRecords LasCrsVlrs(const ProjectCrs& crs, int version_minor) {
   return out;
 }
 
-void AddCrsToLasOptions(const ProjectCrs& crs, LasWriterOptions* options) {
+void AddCrsToLasOptions(const Crs& crs, LasWriterOptions* options) {
   for (const LasVlr& vlr : options->vlrs) {
     if (vlr.user_id == lf::kProjectionUserId) {
       throw Error("LAS writer options already carry a CRS record (LASF_Projection/" + std::to_string(vlr.record_id) +
@@ -176,15 +189,14 @@ LasCrsInfo ReadLasCrs(const LasHeader& header) {
   info.geokey_records = CountProjectionRecords(header, kLasGeoKeyDirectoryRecordId);
   info.wkt = header.Wkt();
   info.geokeys = ParseLasGeoKeys(header);
+  std::string definition, structure;
   if (!info.wkt.empty()) {
     const WktNode root = ParseWkt1(info.wkt);
     info.epsg = WktHorizontalEpsg(root);
-    info.description = (info.epsg > 0 ? "EPSG:" + std::to_string(info.epsg) + " " : std::string()) + "(WKT1 " +
-                       root.keyword + (root.values.empty() ? "" : " \"" + root.values[0] + "\"") + ")";
-    return info;
-  }
-  if (!info.geokeys.empty()) {
-    int model = 0, projected = 0, geographic = 0;
+    definition = info.wkt;
+    structure = "WKT1 " + root.keyword + (root.values.empty() ? "" : " \"" + root.values[0] + "\"");
+  } else if (!info.geokeys.empty()) {
+    int model = 0, projected = 0, geographic = 0, vertical = 0;
     std::string citation;
     for (const GeoKey& k : info.geokeys) {
       if (k.location != 0) {
@@ -194,6 +206,7 @@ LasCrsInfo ReadLasCrs(const LasHeader& header) {
       if (k.id == kGeoKeyModelType) model = k.value;
       if (k.id == kGeoKeyProjectedCsType) projected = k.value;
       if (k.id == kGeoKeyGeographicType) geographic = k.value;
+      if (k.id == kGeoKeyVerticalCsType) vertical = k.value;
     }
     // Some writers omit GTModelType; a code is taken unless the model type says otherwise.
     if (model != kModelTypeGeographic && projected > 0 && projected < kUserDefined) {
@@ -201,12 +214,32 @@ LasCrsInfo ReadLasCrs(const LasHeader& header) {
     } else if (model != kModelTypeProjected && geographic > 0 && geographic < kUserDefined) {
       info.epsg = geographic;
     }
-    info.description = (info.epsg > 0 ? "EPSG:" + std::to_string(info.epsg) + " " : std::string()) +
-                       "(GeoTIFF keys, model type " + std::to_string(model) +
-                       (citation.empty() ? "" : ", citation \"" + citation + "\"") + ")";
+    if (info.epsg > 0) {
+      definition = "EPSG:" + std::to_string(info.epsg) +
+                   (vertical > 0 && vertical < kUserDefined ? "+" + std::to_string(vertical) : std::string());
+    }
+    structure = "GeoTIFF keys, model type " + std::to_string(model) +
+                (citation.empty() ? "" : ", citation \"" + citation + "\"");
+  } else {
+    info.description = "none";
     return info;
   }
-  info.description = "none";
+  std::string complaint;
+  if (!definition.empty()) {
+    try {
+      const CrsLabel label = LabelCrs(definition);
+      info.name = label.name;
+      info.code = label.code;
+    } catch (const Error& e) {
+      complaint = e.what();
+    }
+  }
+  const std::string code = !info.code.empty() ? info.code
+                           : info.epsg > 0    ? "EPSG:" + std::to_string(info.epsg)
+                                              : std::string();
+  info.description = (code.empty() ? std::string() : code + " ") +
+                     (info.name.empty() ? std::string() : "\"" + info.name + "\" ") + "(" + structure +
+                     (complaint.empty() ? std::string() : "; " + complaint) + ")";
   return info;
 }
 

@@ -1,18 +1,21 @@
 #pragma once
 // The CRS records of the LAS files sacfuse writes, and reading them back
 // (../shared/reference/jobs-and-las.md B5):
-// - LAS 1.4: one LASF_Projection/2112 VLR holding OGC WKT1 (io/wkt1.h), NUL-terminated, and global encoding bit 4
-//   (WKT) set; no GeoTIFF records (a spec error for point formats 6-10).
+// - LAS 1.4: one LASF_Projection/2112 VLR holding OGC WKT1 as PROJ writes it for GDAL (io/crs_wkt.h, kLas14),
+//   NUL-terminated, and global encoding bit 4 (WKT) set; no GeoTIFF records (a spec error for point formats 6-10).
 // - LAS 1.2: GeoTIFF keys: LASF_Projection/34735 (GeoKeyDirectoryTag) and 34737 (GeoAsciiParamsTag, the citation);
-//   no WKT, bit 4 clear. UTM: GTModelType = 1 (projected), ProjectedCSType = the EPSG code, linear and vertical
-//   units = 9001 (metre). A local ENU frame has no EPSG code: GTModelType = 32767 (user-defined), the frame in
-//   GTCitation, vertical units metre.
+//   no WKT, bit 4 clear. A projected CRS: GTModelType = 1 (projected), ProjectedCSType = its EPSG code,
+//   ProjLinearUnits = 9001 (metre), VerticalCSType = the vertical CRS's EPSG code when heights are orthometric
+//   (e.g. 5720 NGF-IGN69), VerticalUnits = 9001; the citation names the CRS, its code and its heights. GeoTIFF keys
+//   hold EPSG codes only: a CRS without one cannot be written to LAS 1.2 (config validation refuses it, naming
+//   output.las_version). A local ENU frame: GTModelType = 32767 (user-defined), the frame in GTCitation, vertical
+//   units metre.
 // - Not georeferenced (crs ""): no CRS record at all.
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "core/crs.h"
+#include "io/crs.h"
 #include "io/las_types.h"
 #include "io/las_writer.h"
 
@@ -37,12 +40,15 @@ struct LasCrsRecords {
   uint16_t global_encoding_bits = 0;  // kLasGlobalEncodingWktBit for LAS 1.4 with a CRS
 };
 
-// The VLRs (and global-encoding bits) carrying `crs` in a LAS 1.<version_minor> file (2 or 4; others throw).
-LasCrsRecords LasCrsVlrs(const ProjectCrs& crs, int version_minor);
+// The VLRs (and global-encoding bits) carrying `crs` in a LAS 1.<version_minor> file (2 or 4; others throw, as
+// does a CRS LAS 1.2's GeoTIFF keys cannot name: LasCrsProblem).
+LasCrsRecords LasCrsVlrs(const Crs& crs, int version_minor);
+// Why a LAS 1.<version_minor> file cannot carry `crs`, or "" when it can.
+std::string LasCrsProblem(const Crs& crs, int version_minor);
 
 // THE helper every writer of a job goes through: adds LasCrsVlrs(crs, options->version_minor) to the options'
 // VLRs and global-encoding bits. Throws when the options already carry a CRS record.
-void AddCrsToLasOptions(const ProjectCrs& crs, LasWriterOptions* options);
+void AddCrsToLasOptions(const Crs& crs, LasWriterOptions* options);
 
 // One entry of a GeoKeyDirectory, with its value resolved.
 struct GeoKey {
@@ -66,9 +72,15 @@ struct LasCrsInfo {
   int geokey_records = 0;          // number of 34735 records
   int epsg = 0;                    // horizontal EPSG code: from the WKT when present, else ProjectedCSType, else
                                    // GeographicType; 0 when unknown or user-defined
-  std::string description;         // e.g. "EPSG:25832 (WKT1 COMPD_CS \"ETRS89 / UTM zone 32N + ...\")", or "none"
+  std::string name;                // PROJ's name of the CRS, e.g. "RGF93 v1 / Lambert-93 + NGF-IGN69 height"; ""
+                                   // when none or PROJ cannot read it
+  std::string code;                // PROJ's code, e.g. "EPSG:2154+5720"; "" when none
+  // e.g. "EPSG:2154+5720 \"RGF93 v1 / Lambert-93 + NGF-IGN69 height\" (WKT1 COMPD_CS)", or "none"; a WKT PROJ
+  // cannot read is described by its structure with PROJ's complaint.
+  std::string description;
 };
-// Throws sacfuse::Error for malformed WKT or GeoKeys.
+// Throws sacfuse::Error for malformed WKT or GeoKeys (a WKT1 that PROJ refuses but that is well-formed is not an
+// error: `name` stays empty and the description says why).
 LasCrsInfo ReadLasCrs(const LasHeader& header);
 
 }  // namespace sacfuse

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "io/crs_wkt.h"
 #include "io/las_format.h"
 #include "io/las_reader.h"
 #include "io/las_validate.h"
@@ -18,8 +19,9 @@ namespace {
 
 using testing::TempDir;
 
-// PROJ 9.1.1's WKT1 (`projinfo EPSG:25832 -o WKT1_GDAL --single-line`, and the same for 32632, 32733): an
-// independent statement of these CRSs, which our PROJCS must reproduce character for character.
+// PROJ 9.1.1's WKT1 (`projinfo EPSG:25832 -o WKT1_GDAL --single-line`, and the same for 32632, 32733, and
+// EPSG:2154+5720): a statement of these CRSs by PROJ's command-line tool, which what we write must reproduce
+// character for character.
 const char* kProj25832 =
     "PROJCS[\"ETRS89 / UTM zone 32N\",GEOGCS[\"ETRS89\",DATUM[\"European_Terrestrial_Reference_System_1989\","
     "SPHEROID[\"GRS 1980\",6378137,298.257222101,AUTHORITY[\"EPSG\",\"7019\"]],AUTHORITY[\"EPSG\",\"6258\"]],"
@@ -45,6 +47,18 @@ const char* kProj32733 =
     "UNIT[\"metre\",1,AUTHORITY[\"EPSG\",\"9001\"]],AXIS[\"Easting\",EAST],AXIS[\"Northing\",NORTH],"
     "AUTHORITY[\"EPSG\",\"32733\"]]";
 
+const char* kProj2154Plus5720 =
+    "COMPD_CS[\"RGF93 v1 / Lambert-93 + NGF-IGN69 height\",PROJCS[\"RGF93 v1 / Lambert-93\",GEOGCS[\"RGF93 v1\","
+    "DATUM[\"Reseau_Geodesique_Francais_1993_v1\",SPHEROID[\"GRS 1980\",6378137,298.257222101,AUTHORITY[\"EPSG\","
+    "\"7019\"]],AUTHORITY[\"EPSG\",\"6171\"]],PRIMEM[\"Greenwich\",0,AUTHORITY[\"EPSG\",\"8901\"]],UNIT[\"degree\","
+    "0.0174532925199433,AUTHORITY[\"EPSG\",\"9122\"]],AUTHORITY[\"EPSG\",\"4171\"]],PROJECTION["
+    "\"Lambert_Conformal_Conic_2SP\"],PARAMETER[\"latitude_of_origin\",46.5],PARAMETER[\"central_meridian\",3],"
+    "PARAMETER[\"standard_parallel_1\",49],PARAMETER[\"standard_parallel_2\",44],PARAMETER[\"false_easting\",700000],"
+    "PARAMETER[\"false_northing\",6600000],UNIT[\"metre\",1,AUTHORITY[\"EPSG\",\"9001\"]],AXIS[\"Easting\",EAST],"
+    "AXIS[\"Northing\",NORTH],AUTHORITY[\"EPSG\",\"2154\"]],VERT_CS[\"NGF-IGN69 height\",VERT_DATUM["
+    "\"Nivellement General de la France - IGN69\",2005,AUTHORITY[\"EPSG\",\"5119\"]],UNIT[\"metre\",1,AUTHORITY["
+    "\"EPSG\",\"9001\"]],AXIS[\"Gravity-related height\",UP],AUTHORITY[\"EPSG\",\"5720\"]]]";
+
 std::vector<uint16_t> AsU16(const std::vector<uint8_t>& bytes) {
   std::vector<uint16_t> out(bytes.size() / 2);
   for (size_t i = 0; i < out.size(); ++i) out[i] = las_format::GetU16(&bytes[2 * i]);
@@ -58,7 +72,9 @@ std::string Parameter(const WktNode& projcs, const std::string& name) {
   return "?";
 }
 
-TEST(LasCrsWkt, UtmIsProjsWkt1PlusEllipsoidalHeightsInMetres) {
+std::string Las14Wkt(const std::string& crs) { return ProjectCrsWkt(crs, CrsWktDialect::kLas14); }
+
+TEST(LasCrsWkt, ProjectedIsProjsWkt1PlusEllipsoidalHeightsInMetres) {
   struct Case {
     const char* crs;
     const char* projcs;
@@ -66,11 +82,11 @@ TEST(LasCrsWkt, UtmIsProjsWkt1PlusEllipsoidalHeightsInMetres) {
   };
   for (const Case& c : {Case{"EPSG:25832", kProj25832, 25832}, Case{"EPSG:32632", kProj32632, 32632},
                         Case{"EPSG:32733", kProj32733, 32733}}) {
-    const ProjectCrs crs = ParseProjectCrs(c.crs);
-    const std::string wkt = ProjectCrsWkt1(crs);
-    EXPECT_EQ(wkt, "COMPD_CS[\"" + crs.Name() + " + ellipsoidal height\"," + c.projcs +
-                       ",VERT_CS[\"ellipsoidal height\",VERT_DATUM[\"Ellipsoid\",2002],UNIT[\"metre\",1,AUTHORITY["
-                       "\"EPSG\",\"9001\"]],AXIS[\"Up\",UP]]]");
+    const Crs crs = ParseProjectCrs(c.crs);
+    const std::string wkt = Las14Wkt(c.crs);
+    EXPECT_EQ(wkt, "COMPD_CS[\"" + crs.Name() + " + Ellipsoid (metre)\"," + c.projcs +
+                       ",VERT_CS[\"Ellipsoid (metre)\",VERT_DATUM[\"Ellipsoid\",2002],UNIT[\"metre\",1,AUTHORITY["
+                       "\"EPSG\",\"9001\"]],AXIS[\"Ellipsoidal height\",UP]]]");
     const WktNode root = ParseWkt1(wkt);
     EXPECT_EQ(root.keyword, "COMPD_CS");
     EXPECT_EQ(WktHorizontalEpsg(root), c.epsg);
@@ -80,14 +96,27 @@ TEST(LasCrsWkt, UtmIsProjsWkt1PlusEllipsoidalHeightsInMetres) {
     EXPECT_EQ(unit->values, (std::vector<std::string>{"metre", "1"}));
     EXPECT_EQ(root.Child("VERT_CS")->Child("VERT_DATUM")->values[1], "2002");  // ellipsoidal
   }
-  const WktNode south = ParseWkt1(ProjectCrsWkt1(ParseProjectCrs("EPSG:32701")));
+  const WktNode south = ParseWkt1(Las14Wkt("EPSG:32701"));
   EXPECT_EQ(Parameter(*south.Child("PROJCS"), "central_meridian"), "-177");
   EXPECT_EQ(Parameter(*south.Child("PROJCS"), "false_northing"), "10000000");
-  EXPECT_EQ(ProjectCrsWkt1(ParseProjectCrs("")), "");
+  EXPECT_EQ(Las14Wkt(""), "");
+  EXPECT_EQ(ProjectCrsWkt("", CrsWktDialect::kGdal), "");
+  EXPECT_THROW(Las14Wkt("EPSG:4326"), ConfigError);
+}
+
+TEST(LasCrsWkt, CompoundIsProjsWkt1WithTheVerticalCrs) {
+  EXPECT_EQ(Las14Wkt("EPSG:2154+5720"), kProj2154Plus5720);
+  EXPECT_EQ(Las14Wkt(" EPSG:2154+5720 "), kProj2154Plus5720);
+  // For GDAL: WKT2:2019 of the CRS as named (GDAL writes its GeoTIFF keys from it).
+  const std::string wkt2 = ProjectCrsWkt("EPSG:2154+5720", CrsWktDialect::kGdal);
+  EXPECT_EQ(wkt2.rfind("COMPOUNDCRS[\"RGF93 v1 / Lambert-93 + NGF-IGN69 height\",PROJCRS[", 0), 0u) << wkt2;
+  EXPECT_NE(wkt2.find("ID[\"EPSG\",5720]"), std::string::npos) << wkt2;
+  EXPECT_EQ(ProjectCrsWkt("EPSG:25832", CrsWktDialect::kGdal).rfind("PROJCRS[\"ETRS89 / UTM zone 32N\"", 0), 0u);
 }
 
 TEST(LasCrsWkt, LocalEnuIsALocalCsNamingItsOrigin) {
-  const std::string wkt = ProjectCrsWkt1(ParseProjectCrs("ENU:51.5,7.46,120"));
+  const std::string wkt = Las14Wkt("ENU:51.5,7.46,120");
+  EXPECT_EQ(ProjectCrsWkt("ENU:51.5,7.46,120", CrsWktDialect::kGdal), wkt);
   const WktNode root = ParseWkt1(wkt);
   EXPECT_EQ(root.keyword, "LOCAL_CS");
   ASSERT_FALSE(root.values.empty());
@@ -115,7 +144,7 @@ TEST(LasCrsWkt, ParserHandlesQuotesParenthesesAndRejectsGarbage) {
 }
 
 TEST(LasCrsRecords, Las14GetsOneNulTerminatedWktRecordAndTheWktBit) {
-  const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
+  const Crs crs = ParseProjectCrs("EPSG:25832");
   const LasCrsRecords r = LasCrsVlrs(crs, 4);
   EXPECT_EQ(r.global_encoding_bits, 0x10);
   ASSERT_EQ(r.vlrs.size(), 1u);
@@ -124,7 +153,7 @@ TEST(LasCrsRecords, Las14GetsOneNulTerminatedWktRecordAndTheWktBit) {
   EXPECT_FALSE(r.vlrs[0].extended);
   ASSERT_FALSE(r.vlrs[0].data.empty());
   EXPECT_EQ(r.vlrs[0].data.back(), 0);
-  EXPECT_EQ(std::string(r.vlrs[0].data.begin(), r.vlrs[0].data.end() - 1), ProjectCrsWkt1(crs));
+  EXPECT_EQ(std::string(r.vlrs[0].data.begin(), r.vlrs[0].data.end() - 1), Las14Wkt("EPSG:25832"));
   const LasCrsRecords none = LasCrsVlrs(ParseProjectCrs(""), 4);
   EXPECT_TRUE(none.vlrs.empty());
   EXPECT_EQ(none.global_encoding_bits, 0);
@@ -148,6 +177,31 @@ TEST(LasCrsRecords, Las12GetsGeoKeysByteForByte) {
                                                           3076, 0, 1, 9001,          // metre
                                                           4099, 0, 1, 9001}));       // vertical metre
   EXPECT_EQ(std::string(r.vlrs[1].data.begin(), r.vlrs[1].data.end()), citation + "|" + std::string(1, '\0'));
+
+  // Lambert-93 + NGF-IGN69: the vertical CRS as VerticalCSTypeGeoKey.
+  const LasCrsRecords lambert = LasCrsVlrs(ParseProjectCrs("EPSG:2154+5720"), 2);
+  const std::string lambert_citation =
+      "RGF93 v1 / Lambert-93 + NGF-IGN69 height (EPSG:2154+5720), NGF-IGN69 height, metre";
+  const uint16_t lambert_len = static_cast<uint16_t>(lambert_citation.size() + 1);
+  EXPECT_EQ(AsU16(lambert.vlrs[0].data), (std::vector<uint16_t>{1, 1, 0, 6,                  //
+                                                                1024, 0, 1, 1,               // projected
+                                                                1026, 34737, lambert_len, 0,  // citation
+                                                                3072, 0, 1, 2154,            // EPSG
+                                                                3076, 0, 1, 9001,            // metre
+                                                                4096, 0, 1, 5720,            // NGF-IGN69
+                                                                4099, 0, 1, 9001}));         // vertical metre
+  LasHeader lh;
+  lh.vlrs = lambert.vlrs;
+  const LasCrsInfo lambert_info = ReadLasCrs(lh);
+  EXPECT_EQ(lambert_info.epsg, 2154);
+  EXPECT_EQ(lambert_info.code, "EPSG:2154+5720");
+  EXPECT_EQ(lambert_info.name, "RGF93 v1 / Lambert-93 + NGF-IGN69 height");
+  // GeoTIFF keys name EPSG codes only: a CRS without one cannot go into LAS 1.2.
+  const Crs custom = ParseProjectCrs("+proj=utm +zone=32 +ellps=GRS80 +units=m +type=crs");
+  EXPECT_NE(LasCrsProblem(custom, 2).find("EPSG code"), std::string::npos);
+  EXPECT_EQ(LasCrsProblem(custom, 4), "");
+  EXPECT_THROW(LasCrsVlrs(custom, 2), Error);
+  EXPECT_EQ(LasCrsVlrs(custom, 4).vlrs.size(), 1u);
 
   const LasCrsRecords enu = LasCrsVlrs(ParseProjectCrs("ENU:51.5,7.46,120"), 2);
   ASSERT_EQ(enu.vlrs.size(), 2u);
@@ -200,20 +254,26 @@ std::string WriteWithCrs(const TempDir& dir, const std::string& name, const std:
 
 TEST(LasCrsRecords, WrittenFilesReadBackWithTheirCrsAndValidate) {
   TempDir dir;
-  for (const char* crs : {"EPSG:25832", "EPSG:32632", "ENU:51.5,7.46,120", ""}) {
+  for (const char* crs : {"EPSG:25832", "EPSG:32632", "EPSG:2154+5720", "ENU:51.5,7.46,120", ""}) {
     for (int minor : {2, 4}) {
       SCOPED_TRACE(std::string(crs) + " 1." + std::to_string(minor));
       const std::string path = WriteWithCrs(dir, "f" + std::to_string(minor) + ".las", crs, minor);
       LasReader reader(path);
       const LasHeader& h = reader.header();
       const LasCrsInfo info = ReadLasCrs(h);
-      const ProjectCrs parsed = ParseProjectCrs(crs);
-      EXPECT_EQ(info.epsg, parsed.epsg);
+      const Crs parsed = ParseProjectCrs(crs);
+      EXPECT_EQ(info.epsg, parsed.horizontal_epsg());
       EXPECT_EQ((h.global_encoding & 0x10) != 0, minor == 4 && parsed.georeferenced());
       EXPECT_EQ(info.wkt_records, minor == 4 && parsed.georeferenced() ? 1 : 0);
       EXPECT_EQ(info.geokey_records, minor == 2 && parsed.georeferenced() ? 1 : 0);
       if (minor == 4 && parsed.georeferenced()) {
-        EXPECT_EQ(info.wkt, ProjectCrsWkt1(parsed));
+        EXPECT_EQ(info.wkt, Las14Wkt(crs));
+      }
+      if (parsed.kind() == Crs::Kind::kProjected) {
+        // PROJ reads back the CRS written: its name and, for a compound, the code of both parts.
+        EXPECT_NE(info.name.find(parsed.Name()), std::string::npos) << info.name;
+        EXPECT_EQ(info.code, parsed.orthometric() || minor == 2 ? parsed.Code() : std::string()) << info.description;
+        EXPECT_NE(info.description.find("\"" + info.name + "\""), std::string::npos) << info.description;
       }
       if (!parsed.georeferenced()) {
         EXPECT_EQ(info.description, "none");

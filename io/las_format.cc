@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sacfuse::las_format {
 namespace {
@@ -128,6 +129,66 @@ std::string EncodePointRecord(const LasPoint& point, const std::array<int32_t, 3
   if (!HasNir(pdrf) && point.nir != 0) return NonZeroFieldError("NIR", pdrf);
   // Waveform packet fields (PDRF 4, 5, 9, 10) stay zero: the caller zero-filled the record.
   return "";
+}
+
+std::vector<uint8_t> EncodeHeader(const HeaderFields& f) {
+  std::vector<uint8_t> h(f.header_size, 0);
+  std::memcpy(h.data(), "LASF", 4);
+  PutU16(&h[kOffFileSourceId], 0);  // aggregated sources: the point source IDs name the views
+  PutU16(&h[kOffGlobalEncoding], f.global_encoding);
+  h[kOffVersionMajor] = 1;
+  h[kOffVersionMinor] = static_cast<uint8_t>(f.version_minor);
+  PutPaddedString(&h[kOffSystemId], kIdFieldSize, f.system_identifier);
+  PutPaddedString(&h[kOffSoftware], kIdFieldSize, f.generating_software);
+  PutU16(&h[kOffCreationDay], f.creation_day);
+  PutU16(&h[kOffCreationYear], f.creation_year);
+  PutU16(&h[kOffHeaderSize], static_cast<uint16_t>(f.header_size));
+  PutU32(&h[kOffPointOffset], f.point_offset);
+  PutU32(&h[kOffNumVlrs], f.num_vlrs);
+  h[kOffPdrf] = static_cast<uint8_t>(f.pdrf | (f.compressed ? 0x80 : 0));
+  PutU16(&h[kOffRecordLength], static_cast<uint16_t>(f.record_length));
+  // Legacy counts: the only counts before 1.4; in 1.4 zero for PDRF >= 6 or counts beyond 32 bits.
+  const bool legacy = f.version_minor < 4 || (f.pdrf < 6 && f.count <= std::numeric_limits<uint32_t>::max());
+  if (legacy) {
+    PutU32(&h[kOffLegacyCount], static_cast<uint32_t>(f.count));
+    for (int r = 0; r < 5; ++r) PutU32(&h[kOffLegacyByReturn + 4 * r], static_cast<uint32_t>(f.by_return[r]));
+  }
+  for (int a = 0; a < 3; ++a) {
+    PutF64(&h[kOffScale + 8 * a], f.scale[a]);
+    PutF64(&h[kOffOffset + 8 * a], f.offset[a]);
+    const double max = f.count == 0 ? 0.0 : Dequantise(f.stored_max[a], f.scale[a], f.offset[a]);
+    const double min = f.count == 0 ? 0.0 : Dequantise(f.stored_min[a], f.scale[a], f.offset[a]);
+    PutF64(&h[kOffBounds + 16 * a], max);  // max before min
+    PutF64(&h[kOffBounds + 16 * a + 8], min);
+  }
+  if (f.version_minor >= 4) {
+    PutU64(&h[kOffWaveformStart], 0);
+    PutU64(&h[kOffEvlrStart], f.evlr_start);
+    PutU32(&h[kOffEvlrCount], f.num_evlrs);
+    PutU64(&h[kOffCount64], f.count);
+    for (int r = 0; r < 15; ++r) PutU64(&h[kOffByReturn64 + 8 * r], f.by_return[r]);
+  }
+  return h;
+}
+
+std::vector<uint8_t> EncodeVlrHeader(const LasVlr& vlr) {
+  std::vector<uint8_t> head(vlr.extended ? kEvlrHeaderSize : kVlrHeaderSize, 0);
+  PutPaddedString(&head[2], 16, vlr.user_id);
+  PutU16(&head[18], vlr.record_id);
+  if (vlr.extended) {
+    PutU64(&head[20], vlr.data.size());
+    PutPaddedString(&head[28], 32, vlr.description);
+  } else {
+    PutU16(&head[20], static_cast<uint16_t>(vlr.data.size()));
+    PutPaddedString(&head[22], 32, vlr.description);
+  }
+  return head;
+}
+
+bool IsLayoutVlr(const LasVlr& vlr) {
+  const bool copc = vlr.user_id == kCopcUserId &&
+                    (vlr.record_id == kCopcInfoRecordId || vlr.record_id == kCopcHierarchyRecordId);
+  return copc || (vlr.user_id == kLaszipUserId && vlr.record_id == kLaszipRecordId);
 }
 
 void DecodePointRecord(const uint8_t* record, int pdrf, const Eigen::Vector3d& scale, const Eigen::Vector3d& offset,

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -52,6 +53,9 @@ constexpr const char* kProjectionUserId = "LASF_Projection";
 constexpr uint16_t kWktRecordId = 2112;
 constexpr const char* kLaszipUserId = "laszip encoded";
 constexpr uint16_t kLaszipRecordId = 22204;
+constexpr const char* kCopcUserId = "copc";
+constexpr uint16_t kCopcInfoRecordId = 1;          // the COPC info VLR (io/copc_format.h)
+constexpr uint16_t kCopcHierarchyRecordId = 1000;  // the COPC hierarchy EVLR
 
 // Minimum header size of LAS 1.<minor>.
 size_t MinHeaderSize(int version_minor);
@@ -123,6 +127,37 @@ bool CanonicalLasScale(double scale, double* canonical);
 // naming the field the format cannot hold (nothing is clamped).
 std::string EncodePointRecord(const LasPoint& point, const std::array<int32_t, 3>& stored, int pdrf,
                               uint8_t* record);
+// The public header fields a writer sets (LasWriter, CopcWriter): one encoder for both.
+struct HeaderFields {
+  int version_minor = 4;
+  int pdrf = 7;
+  bool compressed = false;  // LAZ: the point format id gets bit 7, as LASzip marks compression
+  size_t header_size = kHeaderSize14;
+  size_t record_length = 36;
+  uint32_t point_offset = 0;
+  uint32_t num_vlrs = 0;
+  uint16_t global_encoding = 0;
+  std::string system_identifier;
+  std::string generating_software;
+  uint16_t creation_day = 0;
+  uint16_t creation_year = 0;
+  Eigen::Vector3d scale = Eigen::Vector3d::Constant(0.001);
+  Eigen::Vector3d offset = Eigen::Vector3d::Zero();
+  uint64_t count = 0;
+  std::array<uint64_t, 15> by_return = {};
+  std::array<int32_t, 3> stored_min = {};  // bounds as stored integers (0 written when count is 0)
+  std::array<int32_t, 3> stored_max = {};
+  uint64_t evlr_start = 0;  // LAS 1.4
+  uint32_t num_evlrs = 0;
+};
+// header_size bytes. Legacy counts are written before 1.4, and in 1.4 for PDRF < 6 with at most 2^32-1 points.
+std::vector<uint8_t> EncodeHeader(const HeaderFields& fields);
+// The 54-byte header of a VLR, or the 60-byte header of an EVLR (vlr.extended), for vlr.data.size() bytes.
+std::vector<uint8_t> EncodeVlrHeader(const LasVlr& vlr);
+// Records that describe how a file's points are stored (LASzip's "laszip encoded", COPC's info and hierarchy):
+// writers make their own and never copy these from a source file's VLRs.
+bool IsLayoutVlr(const LasVlr& vlr);
+
 // Reads the standard fields of one record; waveform packet fields and extra bytes are skipped.
 void DecodePointRecord(const uint8_t* record, int pdrf, const Eigen::Vector3d& scale, const Eigen::Vector3d& offset,
                        LasPoint* point);

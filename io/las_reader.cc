@@ -293,6 +293,8 @@ bool LasReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points) {
   return true;
 }
 
+uint64_t LasReader::laz_chunk_table_end() const { return impl_->laz ? impl_->laz->chunk_table_end() : 0; }
+
 std::vector<LasPoint> ReadAllLasPoints(const std::string& path, LasHeader* header) {
   LasReader reader(path);
   if (header != nullptr) *header = reader.header();

@@ -36,6 +36,10 @@ class LasReader {
   // LAZ files: the next chunk as stored, undecoded, and its point count, when the reading stands at a chunk's
   // start; Read continues after it. False for LAS files, at the end, or mid-chunk. (LasWriter::AppendLaz.)
   bool ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points);
+  // LAZ files: the file offset just past the chunk table, whose coded length is that of its entries coded again
+  // (0 for LAS files). A file shorter than this lost the end of its table (which the decoder, like LASzip's,
+  // fills with zeros), what `sacfuse validate` reports.
+  uint64_t laz_chunk_table_end() const;
 
  private:
   struct Impl;

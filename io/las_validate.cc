@@ -13,10 +13,12 @@
 #include <memory>
 
 #include "core/error.h"
+#include "io/copc_validate.h"
 #include "io/input_file.h"
 #include "io/las_crs.h"
 #include "io/las_format.h"
 #include "io/wkt1.h"
+#include "io/unique_file.h"
 
 namespace sacfuse {
 namespace lf = las_format;
@@ -33,11 +35,6 @@ std::string Num(double v) {
   return text;
 }
 
-struct FileCloser {
-  void operator()(FILE* f) const {
-    if (f != nullptr) std::fclose(f);
-  }
-};
 
 class Validator {
  public:
@@ -63,6 +60,7 @@ class Validator {
     CheckCrs();
     if (size_ok) CheckPoints();
     if (compressed_) CheckCompressedPoints();
+    for (const std::string& f : ValidateCopc(path_)) findings_.push_back(f);
     return findings_;
   }
 
@@ -464,6 +462,15 @@ class Validator {
     PointTally t;
     try {
       LasReader reader(path_);
+      // The table ends the point data (EVLRs of LAS 1.4 follow it): a file that ends inside it was truncated, even
+      // though its missing last bytes (the coder's final zeros) decode as the zeros a reader supplies.
+      const uint64_t table_end = reader.laz_chunk_table_end();
+      const uint64_t limit = minor_ >= 4 && num_evlrs_ > 0 && evlr_start_ >= table_end ? evlr_start_ : file_size_;
+      if (table_end > limit) {
+        Add("LAZ", "the chunk table's coded entries end at byte " + std::to_string(table_end) + ", but the " +
+                       (limit == file_size_ ? "file ends at " : "first EVLR starts at ") + std::to_string(limit) +
+                       ": its last " + std::to_string(table_end - limit) + " bytes are missing (truncated)");
+      }
       std::vector<LasPoint> chunk;
       while (reader.Read(&chunk, kChunkRecords) > 0) {
         for (const LasPoint& p : chunk) {
@@ -533,7 +540,7 @@ class Validator {
   }
 
   std::string path_;
-  std::unique_ptr<FILE, FileCloser> file_;
+  UniqueFile file_;
   uint64_t file_size_ = 0;
   std::vector<std::string> findings_;
   std::vector<uint8_t> h_;

@@ -26,6 +26,8 @@
 //   creation date   not set (year 0), or in the future
 //   CRS             GeoTIFF records in a PDRF 6-10 file, both GeoTIFF and WKT, several WKT records, malformed
 //                   WKT or GeoKeys
+//   COPC            for a COPC file (first VLR the COPC info VLR, or named *.copc.laz): its octree, hierarchy,
+//                   chunks and nodes' points (io/copc_validate.h)
 // A file without any CRS is not a finding (sacfuse writes none when config `crs` is empty).
 #include <string>
 #include <vector>

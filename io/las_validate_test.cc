@@ -1,5 +1,6 @@
 #include "io/las_validate.h"
 
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
@@ -7,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/crs.h"
+#include "io/crs.h"
 #include "io/las_crs.h"
 #include "io/las_format.h"
 #include "io/las_reader.h"
@@ -349,6 +350,29 @@ TEST(LasValidateLazTest, ChecksLazOnItsDecodedPoints) {
   for (const std::string& f : findings) named = named || f.rfind("LAZ", 0) == 0 || f.rfind("bounds", 0) == 0 ||
                                                 f.rfind("return numbers", 0) == 0 || f.rfind("points by return", 0) == 0;
   EXPECT_TRUE(named) << findings[0];
+}
+
+// Issue 50: a LAZ file missing the last bytes of its chunk table decoded (the coder's final bytes are zeros, which a
+// decoder supplies past the end, as LASzip's does) and validated "ok".
+TEST(LasValidateLazTest, ChunkTableCutShortIsAFinding) {
+  TempDir dir;
+  FileSpec spec;
+  spec.minor = 2;  // no EVLRs: the chunk table ends the file
+  spec.crs = "EPSG:32632";
+  spec.edit_options = [](LasWriterOptions* o) { o->compressed = true; };
+  const std::string laz = MakeFile(dir, "whole.laz", spec);
+  ASSERT_TRUE(ValidateLasFile(laz).empty());
+  const uint64_t size = std::filesystem::file_size(laz);
+  EXPECT_EQ(LasReader(laz).laz_chunk_table_end(), size);
+  for (const uint64_t cut : {1, 2, 3}) {
+    const std::string shorter = Patched(dir, laz, "cut" + std::to_string(cut) + ".laz",
+                                        [&](std::vector<uint8_t>* b) { b->resize(b->size() - cut); });
+    const std::vector<std::string> findings = ValidateLasFile(shorter);
+    ASSERT_FALSE(findings.empty()) << cut << " bytes cut: validated ok";
+    EXPECT_EQ(findings[0], "LAZ: the chunk table's coded entries end at byte " + std::to_string(size) +
+                               ", but the file ends at " + std::to_string(size - cut) + ": its last " +
+                               std::to_string(cut) + " bytes are missing (truncated)");
+  }
 }
 
 }  // namespace

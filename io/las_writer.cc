@@ -218,12 +218,8 @@ void LasWriter::Impl::ValidateOptions() {
     throw Error(path + ": system identifier and generating software are limited to 32 characters");
   }
   uint64_t vlr_bytes = 0;
-  // A laszip VLR describes compressed data: never copied (LAZ gets our own below).
-  options.vlrs.erase(std::remove_if(options.vlrs.begin(), options.vlrs.end(),
-                                    [](const LasVlr& v) {
-                                      return v.user_id == lf::kLaszipUserId && v.record_id == lf::kLaszipRecordId;
-                                    }),
-                     options.vlrs.end());
+  // Layout records (laszip, COPC) describe a source file's storage: never copied (LAZ gets our own below).
+  options.vlrs.erase(std::remove_if(options.vlrs.begin(), options.vlrs.end(), lf::IsLayoutVlr), options.vlrs.end());
   if (options.compressed) {
     laz = std::make_unique<LazChunkWriter>(pdrf, record_length);
     buffer_records = LazChunkWriter::kBatchChunks * LazChunkWriter::kChunkPoints;
@@ -256,44 +252,28 @@ void LasWriter::Impl::ValidateOptions() {
 }
 
 std::vector<uint8_t> LasWriter::Impl::BuildHeader(uint64_t evlr_start, uint32_t num_evlrs) const {
-  std::vector<uint8_t> h(header_size, 0);
-  std::memcpy(h.data(), "LASF", 4);
-  lf::PutU16(&h[lf::kOffFileSourceId], 0);  // aggregated sources: the point source IDs name the views
-  lf::PutU16(&h[lf::kOffGlobalEncoding], global_encoding);
-  h[lf::kOffVersionMajor] = 1;
-  h[lf::kOffVersionMinor] = static_cast<uint8_t>(version_minor);
-  lf::PutPaddedString(&h[lf::kOffSystemId], lf::kIdFieldSize, options.system_identifier);
-  lf::PutPaddedString(&h[lf::kOffSoftware], lf::kIdFieldSize, options.generating_software);
-  lf::PutU16(&h[lf::kOffCreationDay], creation_day);
-  lf::PutU16(&h[lf::kOffCreationYear], creation_year);
-  lf::PutU16(&h[lf::kOffHeaderSize], static_cast<uint16_t>(header_size));
-  lf::PutU32(&h[lf::kOffPointOffset], point_offset);
-  lf::PutU32(&h[lf::kOffNumVlrs], num_vlrs);
-  h[lf::kOffPdrf] = static_cast<uint8_t>(pdrf | (laz ? 0x80 : 0));  // LASzip marks compression with bit 7
-  lf::PutU16(&h[lf::kOffRecordLength], static_cast<uint16_t>(record_length));
-  // Legacy counts: the only counts before 1.4; in 1.4 zero for PDRF >= 6 or counts beyond 32 bits.
-  const bool legacy = version_minor < 4 || (pdrf < 6 && count <= std::numeric_limits<uint32_t>::max());
-  if (legacy) {
-    lf::PutU32(&h[lf::kOffLegacyCount], static_cast<uint32_t>(count));
-    for (int r = 0; r < 5; ++r) lf::PutU32(&h[lf::kOffLegacyByReturn + 4 * r], static_cast<uint32_t>(by_return[r]));
-  }
-  const Eigen::Vector3d off = offset.value_or(Eigen::Vector3d::Zero());
-  for (int a = 0; a < 3; ++a) {
-    lf::PutF64(&h[lf::kOffScale + 8 * a], scale[a]);
-    lf::PutF64(&h[lf::kOffOffset + 8 * a], off[a]);
-    const double max = count == 0 ? 0.0 : lf::Dequantise(stored_max[a], scale[a], off[a]);
-    const double min = count == 0 ? 0.0 : lf::Dequantise(stored_min[a], scale[a], off[a]);
-    lf::PutF64(&h[lf::kOffBounds + 16 * a], max);  // max before min
-    lf::PutF64(&h[lf::kOffBounds + 16 * a + 8], min);
-  }
-  if (version_minor >= 4) {
-    lf::PutU64(&h[lf::kOffWaveformStart], 0);
-    lf::PutU64(&h[lf::kOffEvlrStart], evlr_start);
-    lf::PutU32(&h[lf::kOffEvlrCount], num_evlrs);
-    lf::PutU64(&h[lf::kOffCount64], count);
-    for (int r = 0; r < 15; ++r) lf::PutU64(&h[lf::kOffByReturn64 + 8 * r], by_return[r]);
-  }
-  return h;
+  lf::HeaderFields f;
+  f.version_minor = version_minor;
+  f.pdrf = pdrf;
+  f.compressed = laz != nullptr;
+  f.header_size = header_size;
+  f.record_length = record_length;
+  f.point_offset = point_offset;
+  f.num_vlrs = num_vlrs;
+  f.global_encoding = global_encoding;
+  f.system_identifier = options.system_identifier;
+  f.generating_software = options.generating_software;
+  f.creation_day = creation_day;
+  f.creation_year = creation_year;
+  f.scale = scale;
+  f.offset = offset.value_or(Eigen::Vector3d::Zero());
+  f.count = count;
+  f.by_return = by_return;
+  f.stored_min = stored_min;
+  f.stored_max = stored_max;
+  f.evlr_start = evlr_start;
+  f.num_evlrs = num_evlrs;
+  return lf::EncodeHeader(f);
 }
 
 void LasWriter::Impl::WriteBytes(const uint8_t* data, size_t size) {
@@ -327,12 +307,8 @@ void LasWriter::Impl::Open() {
     WriteBytes(header.data(), header.size());
     for (const LasVlr& vlr : options.vlrs) {
       if (vlr.extended) continue;
-      uint8_t head[lf::kVlrHeaderSize] = {};
-      lf::PutPaddedString(head + 2, 16, vlr.user_id);
-      lf::PutU16(head + 18, vlr.record_id);
-      lf::PutU16(head + 20, static_cast<uint16_t>(vlr.data.size()));
-      lf::PutPaddedString(head + 22, 32, vlr.description);
-      WriteBytes(head, sizeof(head));
+      const std::vector<uint8_t> head = lf::EncodeVlrHeader(vlr);
+      WriteBytes(head.data(), head.size());
       WriteBytes(vlr.data.data(), vlr.data.size());
     }
     if (laz) {
@@ -446,12 +422,8 @@ void LasWriter::Close() {
     uint32_t num_evlrs = 0;
     for (const LasVlr& vlr : w.options.vlrs) {
       if (!vlr.extended) continue;
-      uint8_t head[lf::kEvlrHeaderSize] = {};
-      lf::PutPaddedString(head + 2, 16, vlr.user_id);
-      lf::PutU16(head + 18, vlr.record_id);
-      lf::PutU64(head + 20, vlr.data.size());
-      lf::PutPaddedString(head + 28, 32, vlr.description);
-      w.WriteBytes(head, sizeof(head));
+      const std::vector<uint8_t> head = lf::EncodeVlrHeader(vlr);
+      w.WriteBytes(head.data(), head.size());
       w.WriteBytes(vlr.data.data(), vlr.data.size());
       ++num_evlrs;
     }

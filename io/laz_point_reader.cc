@@ -104,6 +104,7 @@ void LazPointReader::ReadChunkTable(uint32_t chunk_size) {
   } catch (const laz::DataError& e) {
     Fail(std::string("LAZ chunk table: ") + e.what());
   }
+  table_end_ = table_offset_ + laz::EncodeChunkTable(entries, variable).size();
   uint64_t start = chunks_start;
   uint64_t first = 0;
   chunks_.clear();

@@ -43,6 +43,8 @@ class LazPointReader {
   void Rewind();
   // Offset of the chunk table (EVLRs of LAS 1.4 LAZ files follow it).
   uint64_t chunk_table_offset() const { return table_offset_; }
+  // Offset just past the chunk table: its entries coded again (the same coder, so the same length as written).
+  uint64_t chunk_table_end() const { return table_end_; }
 
  private:
   [[noreturn]] void Fail(const std::string& message) const;
@@ -58,6 +60,7 @@ class LazPointReader {
   uint64_t point_count_;
   uint64_t point_data_offset_;
   uint64_t table_offset_ = 0;
+  uint64_t table_end_ = 0;
   laz::LazVlr vlr_;
   std::vector<std::unique_ptr<laz::ChunkDecoder>> decoders_;  // one per chunk of a batch, made when first needed
   struct Chunk {

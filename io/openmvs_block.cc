@@ -200,28 +200,7 @@ RgbImage OpenMvsBlock::ReadImage(const View& view) const {
   return rgb;
 }
 
-std::vector<double> OpenMvsBlock::SceneHeights() const {
-  constexpr int kRows = 16, kColumns = 64;
-  std::vector<double> z;
-  for (const View& view : views_) {
-    const std::string& path = dmap_paths_[view.index];
-    const DmapHeader h = ReadDmapHeader(path);
-    const int width = static_cast<int>(h.depth_width), height = static_cast<int>(h.depth_height);
-    const PinholeCamera depth_camera = view.camera.Scaled(width, height);
-    const Rigid3d world_from_cam = view.cam_from_world.Inverse();
-    const int rows = std::min(kRows, height), cols = std::min(kColumns, width);
-    for (int k = 0; k < rows; ++k) {
-      const int row = static_cast<int>((k + 0.5) * height / rows);
-      const DepthMap line = ReadDmapDepthWindow(path, h, PixelWindow{row, row + 1, 0, width});
-      for (int j = 0; j < cols; ++j) {
-        const int col = static_cast<int>((j + 0.5) * width / cols);
-        const float d = line.at(0, col);
-        if (IsValidDepth(d)) z.push_back(DepthPixelToWorld(depth_camera, world_from_cam, col, row, d).z());
-      }
-    }
-  }
-  return z;
-}
+std::vector<double> OpenMvsBlock::SceneHeights() const { return SampleDepthMapHeights(*this); }
 
 void WriteOpenMvsBlock(const DepthBlock& input, const std::string& out_dir) {
   fs::create_directories(out_dir);

@@ -45,6 +45,7 @@ class OpenMvsBlock : public DepthBlock {
   // z of depth pixels back-projected on a sparse grid (16 rows x up to 64 columns of every view), so tile planning
   // gets the block's height range without reading every depth map whole.
   std::vector<double> SceneHeights() const override;
+  std::string SceneHeightsSource() const override { return "depth-map sample"; }
 
  private:
   std::string dir_;

@@ -7,7 +7,7 @@
 
 #include "core/backproject.h"
 #include "core/error.h"
-#include "core/photogrammetric_orientation.h"
+#include "io/input_warnings.h"
 #include "io/rgb_image_file.h"
 #include "io/tiff_depth.h"
 #include "io/view_checks.h"
@@ -45,10 +45,6 @@ auto ForView(const View& view, F&& read) -> decltype(read()) {
   }
 }
 
-std::string ViewText(const CameraFileView& v) {
-  return (v.line > 0 ? "line " + std::to_string(v.line) + ": " : std::string()) + "view " + Quoted(v.image);
-}
-
 }  // namespace
 
 std::string FindCameraFile(const std::string& dir) {
@@ -71,57 +67,35 @@ DepthKind ParseDepthKind(const std::string& text) {
   throw ConfigError("input.depth_kind = " + text + ": must be z (along the optical axis) or range (along the ray)");
 }
 
-Rigid3d CamFromWorldOfFileView(const CameraFileView& v, const ProjectCrs& crs, const std::string& file) {
-  const bool enu = v.attitude_frame == AttitudeFrame::kLocalEnu;
-  if ((v.geodetic || enu) && !crs.georeferenced()) {
-    throw ConfigError(std::string("crs = \"\": ") + file + ": " + ViewText(v) + " gives " +
-                      (v.geodetic ? "a geodetic position (lat_deg, lon_deg, h_m)"
-                                  : "its attitude w.r.t. local east-north-up (attitude_frame: local_enu)") +
-                      ", which needs the project CRS: set the config key crs (e.g. crs: EPSG:25832)");
-  }
-  try {
-    Eigen::Vector3d centre = v.position;
-    double lat_deg = 0, lon_deg = 0;
-    if (v.geodetic) {
-      lat_deg = v.position.x();
-      lon_deg = v.position.y();
-      centre = ProjectFromGeodetic(crs, lat_deg, lon_deg, v.position.z());
-    } else if (enu) {
-      const Eigen::Vector3d geo = GeodeticFromProject(crs, v.position);
-      lat_deg = geo.x();
-      lon_deg = geo.y();
-    }
-    const Eigen::Matrix3d rotation =
-        enu ? Eigen::Matrix3d(ProjectFromLocalEnuRotation(crs, lat_deg, lon_deg) * v.rotation) : v.rotation;
-    return CamFromWorldFromPhotogrammetric(rotation, centre);
-  } catch (const ConfigError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw InputError(file, ViewText(v) + ": cannot place the camera in crs " + crs.text + ": " + e.what());
-  }
-}
-
-RasterBlock::RasterBlock(const std::string& camera_file, DepthKind depth_kind, const std::string& crs_text)
+RasterBlock::RasterBlock(const std::string& camera_file, DepthKind depth_kind, const CameraFrame& frame)
     : camera_file_(camera_file),
       base_dir_(std::filesystem::path(camera_file).parent_path().string()),
       depth_kind_(depth_kind),
       file_(ReadCameraFile(camera_file)) {
-  ProjectCrs crs;
-  try {
-    crs = ParseProjectCrs(crs_text);
-  } catch (const Error& e) {
-    throw ConfigError(std::string("crs = \"") + crs_text + "\": " + e.what());
-  }
+  const CameraPlacement placement(frame);
   views_.reserve(file_.views.size());
+  std::vector<double> shifts;
   for (const CameraFileView& fv : file_.views) {
     View view;
     view.index = static_cast<uint32_t>(views_.size());
     view.name = fv.image;
     view.camera = fv.camera;
-    view.cam_from_world = CamFromWorldOfFileView(fv, crs, camera_file_);
-    CheckViewIntrinsics(view.camera, camera_file_, ViewText(fv));
-    CheckViewPose(view.cam_from_world, camera_file_, ViewText(fv));
+    view.cam_from_world = placement.CamFromWorld(fv, camera_file_);
+    CheckViewIntrinsics(view.camera, camera_file_, CameraFileViewText(fv));
+    CheckViewPose(view.cam_from_world, camera_file_, CameraFileViewText(fv));
+    shifts.push_back(placement.HeightShiftM(fv, view.cam_from_world));
     views_.push_back(std::move(view));
+  }
+  // Their mean, exactly the common value when all are equal (no input.cameras_crs: input.origin_m's z).
+  scene_height_shift_m_ = shifts.empty() ? frame.origin_m.z() : shifts[0];
+  double deviation = 0.0;
+  for (const double s : shifts) deviation += s - shifts[0];
+  if (!shifts.empty()) scene_height_shift_m_ += deviation / static_cast<double>(shifts.size());
+  const size_t without_image = static_cast<size_t>(std::count_if(
+      file_.views.begin(), file_.views.end(), [](const CameraFileView& v) { return v.image_path.empty(); }));
+  if (without_image > 0) {
+    WarnAboutInput(camera_file_, std::to_string(without_image) + " of " + std::to_string(views_.size()) +
+                                     " views have no image_path: their points get no colour (mid grey)");
   }
 }
 
@@ -188,7 +162,11 @@ RgbImage RasterBlock::ReadImage(const View& view) const {
 }
 
 std::vector<double> RasterBlock::SceneHeights() const {
-  if (!file_.scene_heights_m.empty()) return file_.scene_heights_m;
+  if (!file_.scene_heights_m.empty()) {
+    std::vector<double> z = file_.scene_heights_m;
+    for (double& h : z) h += scene_height_shift_m_;
+    return z;
+  }
   std::call_once(heights_once_, [this] {
     constexpr int kGrid = 8, kSegment = 32;
     std::vector<double> z;

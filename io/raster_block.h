@@ -4,9 +4,9 @@
 // (io/tiff_depth.h) and optionally its image.
 //
 // - Views are numbered in camera-file order; a view's name is its `image` field.
-// - Positions and attitudes become sacfuse poses in the project CRS (config `crs`): geodetic positions with
-//   ProjectFromGeodetic, attitudes w.r.t. local ENU with ProjectFromLocalEnuRotation at the camera
-//   (core/crs.h), then core/photogrammetric_orientation.h's CamFromWorldFromPhotogrammetric.
+// - Positions and attitudes become sacfuse poses in the project CRS (config `crs`) as io/camera_placement.h says
+//   (input.cameras_crs, input.origin_m, geodetic positions, local-ENU attitudes), then
+//   core/photogrammetric_orientation.h's CamFromWorldFromPhotogrammetric.
 // - The intrinsics stay at image resolution; a depth raster may be smaller (the image size scaled by one factor,
 //   each side rounded to within 1 px) and is back-projected through the camera scaled to it, as for COLMAP.
 // - Depth: `z` (the coordinate along the optical axis, metres) or `range` (distance from the projection centre
@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "core/crs.h"
 #include "io/camera_file.h"
+#include "io/camera_placement.h"
 #include "io/depth_block.h"
 
 namespace sacfuse {
@@ -28,10 +28,11 @@ enum class DepthKind { kZ, kRange };
 
 class RasterBlock : public DepthBlock {
  public:
-  // Reads the camera file and turns every view into a sacfuse View (no depth raster is opened). `crs` is the
-  // config's `crs` text. Throws InputError naming the camera file (line, view, field), ConfigError naming the key
-  // `crs` when views have geodetic positions or local-ENU attitudes and `crs` is empty.
-  RasterBlock(const std::string& camera_file, DepthKind depth_kind, const std::string& crs);
+  // Reads the camera file and turns every view into a sacfuse View (no depth raster is opened). `frame` holds the
+  // config's crs, input.cameras_crs and input.origin_m (a crs text alone converts). Throws InputError naming the
+  // camera file (line, view, field), ConfigError naming the key `crs` when views have geodetic positions or
+  // local-ENU attitudes and `crs` is empty, or naming the CRS keys when they cannot be used.
+  RasterBlock(const std::string& camera_file, DepthKind depth_kind, const CameraFrame& frame);
 
   const std::string& source() const override { return camera_file_; }
   const std::vector<View>& views() const override { return views_; }
@@ -45,10 +46,14 @@ class RasterBlock : public DepthBlock {
   DepthMap ReadDepthMap(const View& view) const override;
   DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override;
   RgbImage ReadImage(const View& view) const override;
-  // The camera file's scene_heights_m when it has them; else z of back-projected depths sampled on a sparse grid
+  // The camera file's scene_heights_m (moved into the project CRS by CameraPlacement::HeightShiftM, averaged over
+  // the views) when it has them; else z of back-projected depths sampled on a sparse grid
   // of every view (8 x 8 short row segments of 32 pixels: at most 64 strips or tiles decoded per view), computed
   // once.
   std::vector<double> SceneHeights() const override;
+  std::string SceneHeightsSource() const override {
+    return file_.scene_heights_m.empty() ? "depth-map sample" : "camera file scene_heights_m";
+  }
 
  private:
   // Checks a raster's size against the view's image; returns the camera scaled to it.
@@ -61,6 +66,7 @@ class RasterBlock : public DepthBlock {
   DepthKind depth_kind_;
   CameraFile file_;
   std::vector<View> views_;
+  double scene_height_shift_m_ = 0.0;
   mutable std::once_flag heights_once_;
   mutable std::vector<double> heights_;
 };
@@ -71,8 +77,5 @@ std::string FindCameraFile(const std::string& dir);
 
 DepthKind ParseDepthKind(const std::string& text);  // "z" | "range"; throws ConfigError naming input.depth_kind
 
-// The world pose of a camera-file view: positions and attitudes converted into the project CRS. Throws ConfigError
-// (key `crs`) when the view needs a CRS and `crs` is kNone, InputError(file) when the CRS rejects the position.
-Rigid3d CamFromWorldOfFileView(const CameraFileView& view, const ProjectCrs& crs, const std::string& file);
 
 }  // namespace sacfuse

@@ -9,12 +9,13 @@
 #include <vector>
 
 #include "core/backproject.h"
-#include "core/crs.h"
+#include "io/crs.h"
 #include "core/error.h"
 #include "core/photogrammetric_orientation.h"
 #include "io/raster_block_writer.h"
 #include "io/rgb_image_file.h"
 #include "io/tiff_depth.h"
+#include "tests/support/gtx_grid.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
@@ -60,7 +61,7 @@ DepthMap PlaneDepth(const PinholeCamera& depth_camera, const Rigid3d& cam_from_w
 // Writes a block of TestCameras: the camera file `file_name` plus depth rasters at `depth_scale` of the image
 // size; positions geodetic (with `crs`) or in the grid; returns the camera file path.
 std::string WriteBlock(const TempDir& dir, const std::string& file_name, double depth_scale, bool range, bool geodetic,
-                       const ProjectCrs& crs, const Eigen::Vector3d& origin) {
+                       const Crs& crs, const Eigen::Vector3d& origin) {
   std::vector<CameraFileView> views;
   for (const TestCamera& tc : TestCameras(origin)) {
     CameraFileView v;
@@ -139,7 +140,7 @@ TEST(RasterBlockTest, ZAndRangeDepthsAtFullAndHalfSizeBackProjectOntoTheScene) {
 }
 
 TEST(RasterBlockTest, GeodeticPositionsWithLocalEnuAttitudes) {
-  const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
+  const Crs crs = ParseProjectCrs("EPSG:25832");
   const Eigen::Vector3d origin(470000.0, 5650000.0, 0.0);  // west of the zone's central meridian (9 E)
   TempDir dir;
   const std::string file = WriteBlock(dir, "cameras.csv", 1.0, false, true, crs, origin);
@@ -180,6 +181,100 @@ TEST(RasterBlockTest, LocalEnuAttitudeIsTurnedByTheMeridianConvergence) {
   const Eigen::Vector3d grid_top = grid.views()[0].cam_from_world.rotation.conjugate() * Eigen::Vector3d(0, -1, 0);
   EXPECT_LT((grid_top - Eigen::Vector3d(0, 1, 0)).norm(), 1e-12);
   EXPECT_LT((grid.views()[0].CenterInWorld() - block.views()[0].CenterInWorld()).norm(), 1e-8);
+}
+
+// A workspace in a local frame: input.origin_m moves every position (x_m, y_m, z_m) and the scene heights by it.
+TEST(RasterBlockTest, OriginMovesPositionsAndSceneHeights) {
+  TempDir dir;
+  const std::string file = WriteBlock(dir, "cameras.yaml", 1.0, false, false, {}, Eigen::Vector3d::Zero());
+  CameraFile with_heights = ReadCameraFile(file);
+  with_heights.scene_heights_m = {kGroundZ, kGroundZ + 12.5};
+  WriteCameraFile(file, with_heights);
+  const Eigen::Vector3d origin(770000.0, 6277000.0, 0.0);
+  const RasterBlock local(file, DepthKind::kZ, "");
+  const RasterBlock moved(file, DepthKind::kZ, CameraFrame("EPSG:2154", "", origin));
+  ExpectPointsOnThePlane(moved, 1e-4);
+  for (size_t i = 0; i < local.views().size(); ++i) {
+    const Eigen::Vector3d shift = moved.views()[i].CenterInWorld() - local.views()[i].CenterInWorld();
+    EXPECT_LT((shift - origin).norm(), 1e-8) << i;  // 7e5..6e6 m: a few units of the last bit
+    EXPECT_TRUE(moved.views()[i].cam_from_world.rotation.isApprox(local.views()[i].cam_from_world.rotation, 1e-15));
+  }
+  EXPECT_EQ(moved.SceneHeights(), (std::vector<double>{kGroundZ, kGroundZ + 12.5}));
+  const RasterBlock raised(file, DepthKind::kZ, CameraFrame("", "", Eigen::Vector3d(0, 0, 7.25)));
+  EXPECT_EQ(raised.SceneHeights(), (std::vector<double>{kGroundZ + 7.25, kGroundZ + 12.5 + 7.25}));
+  // Geodetic positions are absolute: an origin with them is an error naming both.
+  TempDir geo_dir;
+  const Crs utm = ParseProjectCrs("EPSG:25832");
+  const std::string geo = WriteBlock(geo_dir, "g.yaml", 1.0, false, true, utm, {470000.0, 5650000.0, 0.0});
+  try {
+    RasterBlock(geo, DepthKind::kZ, CameraFrame("EPSG:25832", "", origin));
+    ADD_FAILURE() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("input.origin_m applies to x_m, y_m, z_m"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("nadir.jpg"), std::string::npos) << e.what();
+  }
+}
+
+// A camera file in WGS 84 / UTM 31N for a Lambert-93 project: positions go through PROJ, grid attitudes turn by
+// the difference of the two grids' convergences, so the block still lands on its plane and every camera looks
+// along the same ground directions.
+TEST(RasterBlockTest, CamerasInAnotherProjectedCrsAreTransformed) {
+  TempDir dir;
+  const Eigen::Vector3d utm_origin(570000.0, 4828000.0, 0.0);  // near Montpellier, 43.6 N 3.87 E
+  const std::string file = WriteBlock(dir, "cameras.yaml", 1.0, false, false, {}, utm_origin);
+  const RasterBlock utm(file, DepthKind::kZ, "EPSG:32631");
+  const RasterBlock lambert(file, DepthKind::kZ, CameraFrame("EPSG:2154", "EPSG:32631"));
+  ExpectPointsOnThePlane(lambert, 2e-3);
+  const Crs utm_crs = ParseProjectCrs("EPSG:32631"), lambert_crs = ParseProjectCrs("EPSG:2154");
+  for (size_t i = 0; i < utm.views().size(); ++i) {
+    // Centres: through latitude/longitude (WGS 84 and RGF93 v1: EPSG's null transformation).
+    const Eigen::Vector3d g = GeodeticFromProject(utm_crs, utm.views()[i].CenterInWorld());
+    EXPECT_LT((lambert.views()[i].CenterInWorld() - ProjectFromGeodetic(lambert_crs, g.x(), g.y(), g.z())).norm(),
+              1e-6);
+    // Viewing directions: the same tilt (a rotation about the vertical), and the azimuth a step along the UTM
+    // direction has once carried over point by point (the grids' scales differ by 7e-4, which the rotation leaves
+    // out: depths are metres).
+    const Eigen::Vector3d d_utm = utm.views()[i].ViewDirectionInWorld();
+    const Eigen::Vector3d d_lambert = lambert.views()[i].ViewDirectionInWorld();
+    EXPECT_NEAR(d_lambert.z(), d_utm.z(), 1e-12) << i;
+    if (d_utm.head<2>().norm() < 0.1) continue;  // the nadir has no azimuth to speak of
+    const Eigen::Vector3d c_utm = utm.views()[i].CenterInWorld();
+    const Eigen::Vector3d g2 = GeodeticFromProject(utm_crs, c_utm + 10.0 * d_utm);
+    const Eigen::Vector3d along = ProjectFromGeodetic(lambert_crs, g2.x(), g2.y(), g2.z()) -
+                                  ProjectFromGeodetic(lambert_crs, g.x(), g.y(), g.z());
+    EXPECT_NEAR(std::atan2(d_lambert.x(), d_lambert.y()), std::atan2(along.x(), along.y()), 1e-6) << i;
+    // ... which is not the UTM azimuth: the grids' convergences here, 0.600 (UTM 31N) and 0.631 degrees
+    // (Lambert-93), differ by 5.4e-4 rad.
+    EXPECT_NEAR(std::atan2(d_lambert.x(), d_lambert.y()) - std::atan2(d_utm.x(), d_utm.y()), -5.4e-4, 0.2e-4) << i;
+  }
+  // Not without crs.
+  EXPECT_THROW(RasterBlock(file, DepthKind::kZ, CameraFrame("", "EPSG:32631")), ConfigError);
+}
+
+// Latitude/longitude with ellipsoidal heights into Lambert-93 + NGF-IGN69: the height goes through the geoid grid
+// (a hand-made stand-in for RAF18, geoid 50 m); without the grid the camera cannot be placed, naming the grid.
+TEST(RasterBlockTest, GeodeticPositionsGetOrthometricHeightsThroughTheGeoidGrid) {
+  TempDir dir, grids;
+  std::ofstream(dir / "c.yaml") << "views:\n  - {image: a.jpg, depth: a.tif, width_px: 10, height_px: 8, focal_px: 20,"
+                                   " lat_deg: 43.6, lon_deg: 3.87, h_m: 250, omega_deg: 0, phi_deg: 0, kappa_deg: 0}\n";
+  SetExtraProjSearchPaths({});
+  try {
+    RasterBlock((dir / "c.yaml").string(), DepthKind::kZ, "EPSG:2154+5720");
+    ADD_FAILURE() << "placed without a geoid grid (or PROJ has RAF18 installed)";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    for (const char* part : {"a.jpg", "crs \"EPSG:2154+5720\"", "fr_ign_RAF18.tif", "search path"}) {
+      EXPECT_NE(m.find(part), std::string::npos) << part << " in " << m;
+    }
+  }
+  testing::WriteGtxGrid(grids / "RAF18.gtx", 42.0, 1.0, 0.5, 9, 11, 50.0);
+  SetExtraProjSearchPaths({grids.path().string()});
+  const RasterBlock block((dir / "c.yaml").string(), DepthKind::kZ, "EPSG:2154+5720");
+  SetExtraProjSearchPaths({});
+  const Eigen::Vector3d centre = block.views()[0].CenterInWorld();
+  EXPECT_NEAR(centre.z(), 200.0, 1e-3);  // H = h - N
+  EXPECT_LT((centre.head<2>() - ProjectFromGeodetic(ParseProjectCrs("EPSG:2154"), 43.6, 3.87, 0.0).head<2>()).norm(),
+            1e-6);
 }
 
 TEST(RasterBlockTest, BadRastersAndImagesNameFileAndView) {
@@ -231,7 +326,7 @@ TEST(RasterBlockTest, FindCameraFileAndDepthKind) {
 // WriteRasterBlock of a RasterBlock reads back to the same poses and depths, in every camera-file form.
 TEST(RasterBlockTest, WriterRoundTripsEveryForm) {
   TempDir src;
-  const ProjectCrs crs = ParseProjectCrs("EPSG:25832");
+  const Crs crs = ParseProjectCrs("EPSG:25832");
   const Eigen::Vector3d origin(390000.0, 5705000.0, 0.0);
   const RasterBlock input(WriteBlock(src, "cameras.yaml", 0.5, false, false, {}, origin), DepthKind::kZ, "EPSG:25832");
   struct Form {

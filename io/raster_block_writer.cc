@@ -50,7 +50,11 @@ CameraFileView FileViewOf(const View& view, const RasterBlockWriteOptions& o) {
         "input (set the config key crs)");
   }
   Eigen::Vector3d geo = Eigen::Vector3d::Zero();
-  if (o.geodetic_positions || enu) geo = GeodeticFromProject(o.crs, centre);
+  if (o.geodetic_positions) {
+    geo = GeodeticFromProject(o.crs, centre);
+  } else if (enu) {
+    geo.head<2>() = LatLonFromProject(o.crs, centre);  // the attitude needs no height (nor a geoid grid)
+  }
   fv.position = o.geodetic_positions ? geo : centre;
   fv.rotation =
       enu ? Eigen::Matrix3d(ProjectFromLocalEnuRotation(o.crs, geo.x(), geo.y()).transpose() * rotation) : rotation;

@@ -5,7 +5,7 @@
 // that every camera-file form fuses to the same points.
 #include <string>
 
-#include "core/crs.h"
+#include "io/crs.h"
 #include "io/camera_file.h"
 #include "io/depth_block.h"
 #include "io/raster_block.h"
@@ -18,7 +18,7 @@ struct RasterBlockWriteOptions {
   CameraFileWriteOptions camera;                        // angles or matrix; interior in pixels or millimetres
   bool geodetic_positions = false;                      // lat_deg, lon_deg, h_m instead of x_m, y_m, z_m (needs crs)
   AttitudeFrame attitude_frame = AttitudeFrame::kGrid;  // local_enu needs crs
-  ProjectCrs crs;                                       // the input's project CRS (config `crs`)
+  Crs crs;                                              // the input's project CRS (config `crs`)
   DepthKind depth_kind = DepthKind::kZ;                 // range: distance along each pixel's ray
   TiffDepthWriteOptions tiff;                           // layout and compression of the depth rasters
   // YAML camera files: also write the input's SceneHeights() (e.g. COLMAP's sparse points) as scene_heights_m,

@@ -1,21 +1,16 @@
 #include "io/raster_crs.h"
 
 #include <cstdlib>
+#include <string>
 
 #include <cpl_conv.h>
 #include <ogr_spatialref.h>
 
 #include "io/las_crs.h"
-#include "io/wkt1.h"
 
 namespace sacfuse {
-namespace {
 
-// A projected or geographic CRS with an ellipsoidal height axis (a 3D CRS, not a compound one) as its horizontal
-// CRS: GeoTIFF has no keys for ellipsoidal heights, and GDAL would write such a CRS as an ESRI PE string whose
-// text varies with the state of PROJ's database queries in the process (datum vs datum ensemble), so the same
-// raster would not be the same bytes. Any other CRS is returned as it is.
-std::string HorizontalOfEllipsoidal3d(const std::string& wkt) {
+std::string RasterCrsWktOf(const std::string& wkt) {
   if (wkt.empty()) return wkt;
   OGRSpatialReference srs;
   if (srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return wkt;
@@ -49,13 +44,9 @@ std::string HorizontalOfEllipsoidal3d(const std::string& wkt) {
   return horizontal;
 }
 
-}  // namespace
-
-std::string RasterCrsWkt(const ProjectCrs& crs) { return HorizontalOfEllipsoidal3d(ProjectCrsWkt1(crs)); }
-
 std::string RasterCrsWktOfLas(const LasHeader& header) {
   const LasCrsInfo info = ReadLasCrs(header);
-  if (!info.wkt.empty()) return HorizontalOfEllipsoidal3d(info.wkt);
+  if (!info.wkt.empty()) return RasterCrsWktOf(info.wkt);
   if (info.epsg == 0) return "";
   OGRSpatialReference srs;
   if (srs.importFromEPSG(info.epsg) != OGRERR_NONE) return "";

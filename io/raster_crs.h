@@ -1,22 +1,22 @@
 #pragma once
-// The CRS written into raster products (GeoTIFF keys through GDAL): one place, so that the CRS definitions of a
-// later PROJ-based project CRS replace only the bodies here.
+// The CRS a raster product (io/gdal_raster.h) gets from a point cloud file's CRS record (`sacfuse dsm` of a LAS
+// file). A run's rasters take the project CRS from io/crs_wkt.h (ProjectCrsWkt, CrsWktDialect::kGdal) instead.
 #include <string>
 
-#include "core/crs.h"
 #include "io/las_types.h"
 
 namespace sacfuse {
 
-// WKT of the project CRS for a raster ("" when not georeferenced): today the WKT1 our LAS files carry
-// (io/wkt1.h ProjectCrsWkt1: the UTM zone with ellipsoidal heights, or the local ENU frame). A CRS with an
-// ellipsoidal height axis is written as its horizontal CRS (GeoTIFF has no keys for ellipsoidal heights; the
-// raster's heights are those of the LAS files, docs/dsm-and-ortho.md); compound CRSs keep their vertical part.
-std::string RasterCrsWkt(const ProjectCrs& crs);
+// A CRS definition (WKT) as a raster carries it: a projected or geographic CRS with an ellipsoidal height axis (the
+// WKT1 of our LAS 1.4 files for a CRS without a vertical part, COMPD_CS[PROJCS, VERT_CS["Ellipsoid"]], which GDAL
+// reads as a 3D CRS) becomes its horizontal CRS, by its EPSG code when PROJ's database knows it: GeoTIFF has no keys
+// for ellipsoidal heights, and GDAL would write such a CRS as an ESRI PE string whose text varies with the state of
+// PROJ's database queries in the process. Any other CRS (compound with a vertical CRS, local) is returned as it is.
+std::string RasterCrsWktOf(const std::string& wkt);
 
-// The CRS of a LAS file as WKT GDAL reads (a 3D one as its horizontal CRS, as above): its WKT record (LAS 1.4),
-// else the EPSG code of its GeoKeys (LAS 1.2: ProjectedCSType / GeographicType) expanded by GDAL; "" when it has
-// none or GDAL does not know the code.
+// The CRS of a LAS file as WKT GDAL reads, through RasterCrsWktOf: its WKT record (LAS 1.4), else the EPSG code of
+// its GeoKeys (LAS 1.2: ProjectedCSType / GeographicType) expanded by GDAL; "" when it has none or GDAL does not
+// know the code.
 std::string RasterCrsWktOfLas(const LasHeader& header);
 
 }  // namespace sacfuse

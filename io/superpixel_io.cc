@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/unique_file.h"
 
 namespace sacfuse {
 namespace {
@@ -55,10 +56,7 @@ float GetF32(const unsigned char* p) {
   return v;
 }
 
-struct FileCloser {
-  void operator()(std::FILE* f) const { std::fclose(f); }
-};
-using File = std::unique_ptr<std::FILE, FileCloser>;
+using File = UniqueFile;
 
 // An open superpixel file with a validated header.
 struct OpenFile {

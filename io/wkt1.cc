@@ -102,26 +102,6 @@ class Parser {
   size_t pos_ = 0;
 };
 
-std::string Num(double v) {
-  char text[64];
-  std::snprintf(text, sizeof(text), "%.15g", v);
-  return text;
-}
-
-const char* kMetre = "UNIT[\"metre\",1,AUTHORITY[\"EPSG\",\"9001\"]]";
-
-std::string GeogCs(const std::string& datum) {
-  if (datum == "ETRS89") {
-    return "GEOGCS[\"ETRS89\",DATUM[\"European_Terrestrial_Reference_System_1989\",SPHEROID[\"GRS 1980\",6378137,"
-           "298.257222101,AUTHORITY[\"EPSG\",\"7019\"]],AUTHORITY[\"EPSG\",\"6258\"]],PRIMEM[\"Greenwich\",0,"
-           "AUTHORITY[\"EPSG\",\"8901\"]],UNIT[\"degree\",0.0174532925199433,AUTHORITY[\"EPSG\",\"9122\"]],"
-           "AUTHORITY[\"EPSG\",\"4258\"]]";
-  }
-  return "GEOGCS[\"WGS 84\",DATUM[\"WGS_1984\",SPHEROID[\"WGS 84\",6378137,298.257223563,AUTHORITY[\"EPSG\",\"7030\"]],"
-         "AUTHORITY[\"EPSG\",\"6326\"]],PRIMEM[\"Greenwich\",0,AUTHORITY[\"EPSG\",\"8901\"]],UNIT[\"degree\","
-         "0.0174532925199433,AUTHORITY[\"EPSG\",\"9122\"]],AUTHORITY[\"EPSG\",\"4326\"]]";
-}
-
 }  // namespace
 
 const WktNode* WktNode::Child(const std::string& name) const {
@@ -140,27 +120,6 @@ int WktNode::EpsgAuthority() const {
 }
 
 WktNode ParseWkt1(const std::string& text) { return Parser(text).Document(); }
-
-std::string ProjectCrsWkt1(const ProjectCrs& crs) {
-  switch (crs.kind) {
-    case ProjectCrs::Kind::kNone: return "";
-    case ProjectCrs::Kind::kLocalEnu:
-      return "LOCAL_CS[\"sacfuse local ENU: origin lat " + Num(crs.origin_lat_deg) + ", lon " +
-             Num(crs.origin_lon_deg) + ", h " + Num(crs.origin_h_m) +
-             " m (WGS 84 ellipsoid); z = up, metres\",LOCAL_DATUM[\"east-north-up tangent plane\",32767]," +
-             kMetre + ",AXIS[\"Easting\",EAST],AXIS[\"Northing\",NORTH]]";
-    case ProjectCrs::Kind::kUtm: break;
-  }
-  const std::string name = crs.Name();
-  const std::string projcs =
-      "PROJCS[\"" + name + "\"," + GeogCs(crs.datum) +
-      ",PROJECTION[\"Transverse_Mercator\"],PARAMETER[\"latitude_of_origin\",0],PARAMETER[\"central_meridian\"," +
-      Num(6.0 * crs.utm_zone - 183.0) + "],PARAMETER[\"scale_factor\",0.9996],PARAMETER[\"false_easting\",500000]," +
-      "PARAMETER[\"false_northing\"," + (crs.north ? "0" : "10000000") + "]," + kMetre +
-      ",AXIS[\"Easting\",EAST],AXIS[\"Northing\",NORTH],AUTHORITY[\"EPSG\",\"" + std::to_string(crs.epsg) + "\"]]";
-  return "COMPD_CS[\"" + name + " + ellipsoidal height\"," + projcs +
-         ",VERT_CS[\"ellipsoidal height\",VERT_DATUM[\"Ellipsoid\",2002]," + kMetre + ",AXIS[\"Up\",UP]]]";
-}
 
 int WktHorizontalEpsg(const WktNode& root) {
   const WktNode* node = &root;

@@ -62,8 +62,8 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
   const uint64_t pool = TileMemoryPoolBytes(d.budget_bytes);
   const uint64_t superpixel_bytes = SuperpixelPassBytes(pixels);
   if (config.fusion.method == FusionMethodKind::kSac && superpixel_bytes > d.budget_bytes) {
-    spdlog::warn("the superpixel pass needs ~{:.2f} GiB for the largest view, more than resources.memory_gb = {}",
-                 GiB(superpixel_bytes), config.resources.memory_gb);
+    spdlog::warn("the superpixel pass needs ~{} for the largest view, more than resources.memory_gb = {} ({})",
+                 ByteSizeText(superpixel_bytes), config.resources.memory_gb, ByteSizeText(d.budget_bytes));
   }
   // Tiled: the superpixel pass runs alone before the tiles; untiled: beside the whole block (set below).
   d.views_in_flight = SuperpixelViewsInFlight(pixels, d.budget_bytes, static_cast<size_t>(threads), superpixel_bytes);
@@ -126,10 +126,10 @@ TilingDecision DecideTiling(const JobConfig& config, const DepthBlock& input) {
       return d;
     }
   }
-  throw ConfigError(fmt::format("resources.memory_gb = {}: too small for this block: even {} m tiles need ~{:.2f} GiB "
-                                "each (plus {:.2f} GiB reserved)",
-                                config.resources.memory_gb, smallest_size, GiB(smallest_bytes),
-                                GiB(d.budget_bytes - std::min(d.budget_bytes, pool))));
+  throw ConfigError(fmt::format("resources.memory_gb = {}: too small for this block: even {} m tiles need ~{} "
+                                "each (plus {} reserved for the process and shared tables)",
+                                config.resources.memory_gb, smallest_size, ByteSizeText(smallest_bytes),
+                                ByteSizeText(d.budget_bytes - std::min(d.budget_bytes, pool))));
 }
 
 JobConfig ResolveTiling(const JobConfig& config, const DepthBlock& input, TilingDecision* decision) {

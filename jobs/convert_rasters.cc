@@ -2,7 +2,7 @@
 
 #include <limits>
 
-#include "core/crs.h"
+#include "io/crs.h"
 #include "core/error.h"
 #include "io/raster_block_writer.h"
 

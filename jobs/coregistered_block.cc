@@ -11,9 +11,11 @@
 #include <tbb/parallel_for.h>
 
 #include "config/output_layout.h"
+#include "config/version.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/view_identity.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 
@@ -83,7 +85,7 @@ nlohmann::json ResultJson(const DepthBlock& input, const CoregistrationResult& r
     iterations.push_back({{"residuals", it.residuals}, {"weighted_rms_m", it.weighted_rms_m},
                           {"median_step_deg", it.median_step_deg}, {"median_step_m", it.median_step_m}});
   }
-  return {{"format", kFormat}, {"inputs_digest", digest}, {"options", OptionsJson(config)},
+  return {{"format", kFormat}, {"version", FullVersionString()}, {"inputs_digest", digest}, {"options", OptionsJson(config)},
           {"decimation", decimation}, {"pairs", r.pairs}, {"summary", r.summary}, {"iterations", iterations},
           {"views", views}};
 }
@@ -127,15 +129,6 @@ bool ReadCurrent(const std::string& path, const DepthBlock& input, const std::st
 
 }  // namespace
 
-CoregisteredBlock::CoregisteredBlock(std::unique_ptr<DepthBlock> inner, const std::vector<Rigid3d>& cam_from_world)
-    : inner_(std::move(inner)), views_(inner_->views()) {
-  if (cam_from_world.size() != views_.size()) {
-    throw Error("co-registration: " + std::to_string(cam_from_world.size()) + " poses for " +
-                std::to_string(views_.size()) + " views");
-  }
-  for (size_t i = 0; i < views_.size(); ++i) views_[i].cam_from_world = cam_from_world[i];
-}
-
 std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::unique_ptr<DepthBlock> input,
                                                   CoregistrationOutcome* outcome) {
   CoregistrationOutcome local;
@@ -164,7 +157,7 @@ std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::
     }
     file = ResultJson(*input, result, digest, config, decimation);
     std::filesystem::create_directories(config.output.dir);
-    WriteFileAtomically(path, file.dump(1) + "\n");
+    WriteFileAtomically(path, JsonText(file, 1) + "\n");
     for (const ViewCorrection& v : result.views) poses.push_back(v.cam_from_world);
   }
   Summarise(file, &out);
@@ -174,7 +167,7 @@ std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::
                "{:.3f} / max {:.3f} m, residual rms median {:.3f} -> {:.3f} m ({})",
                poses.size(), out.reused ? "reused" : "computed", out.seconds, m.median_rotation_deg,
                m.max_rotation_deg, m.median_shift_m, m.max_shift_m, m.median_rms_before_m, m.median_rms_after_m, path);
-  return std::make_unique<CoregisteredBlock>(std::move(input), poses);
+  return std::make_unique<ReposedBlock>(std::move(input), poses);
 }
 
 }  // namespace sacfuse

@@ -14,35 +14,9 @@
 #include "config/job_config.h"
 #include "core/coregistration.h"
 #include "io/depth_block.h"
+#include "io/reposed_block.h"
 
 namespace sacfuse {
-
-// `inner` with the views' poses replaced; rasters, images and files are `inner`'s.
-class CoregisteredBlock : public DepthBlock {
- public:
-  CoregisteredBlock(std::unique_ptr<DepthBlock> inner, const std::vector<Rigid3d>& cam_from_world);
-
-  const std::string& source() const override { return inner_->source(); }
-  const std::vector<View>& views() const override { return views_; }
-  std::string DepthMapPath(const View& view) const override { return inner_->DepthMapPath(Inner(view)); }
-  std::string ImagePath(const View& view) const override { return inner_->ImagePath(Inner(view)); }
-  DepthRasterSize DepthSize(const View& view) const override { return inner_->DepthSize(Inner(view)); }
-  DepthMap ReadDepthMap(const View& view) const override { return inner_->ReadDepthMap(Inner(view)); }
-  DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override {
-    return inner_->ReadDepthWindow(Inner(view), window);
-  }
-  RgbImage ReadImage(const View& view) const override { return inner_->ReadImage(Inner(view)); }
-  std::vector<double> SceneHeights() const override { return inner_->SceneHeights(); }
-  bool HasConsistencyGraph(const View& view) const override { return inner_->HasConsistencyGraph(Inner(view)); }
-  ConsistencyGraph ReadConsistencyGraph(const View& view) const override {
-    return inner_->ReadConsistencyGraph(Inner(view));
-  }
-
- private:
-  const View& Inner(const View& view) const { return inner_->views().at(view.index); }
-  std::unique_ptr<DepthBlock> inner_;
-  std::vector<View> views_;
-};
 
 // What the stage did, for the log and run_report.json.
 struct CoregistrationOutcome {
@@ -53,9 +27,9 @@ struct CoregistrationOutcome {
   CoregistrationSummary summary;
 };
 
-// `input` as the job fuses it: unchanged when coregistration.enabled is false, else a CoregisteredBlock with the
-// poses of DIR/coregistration.json (reused or computed, above). Throws InputError naming a view whose depth map
-// cannot be read.
+// `input` as the job fuses it: unchanged when coregistration.enabled is false, else a ReposedBlock
+// (io/reposed_block.h) with the poses of DIR/coregistration.json (reused or computed, above). Throws InputError
+// naming a view whose depth map cannot be read.
 std::unique_ptr<DepthBlock> WithCoregisteredPoses(const JobConfig& config, std::unique_ptr<DepthBlock> input,
                                                   CoregistrationOutcome* outcome = nullptr);
 

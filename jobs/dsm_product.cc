@@ -9,13 +9,12 @@
 
 #include "config/output_layout.h"
 #include "core/cell_heights.h"
-#include "core/crs.h"
 #include "core/error.h"
 #include "io/cloud_grid.h"
+#include "io/crs_wkt.h"
 #include "io/edge_points_file.h"
 #include "io/gdal_raster.h"
 #include "io/point_cloud_file.h"
-#include "io/raster_crs.h"
 #include "jobs/method_geometry.h"
 #include "tiles/memory_model.h"
 #include "tiles/tile_manifest.h"
@@ -116,7 +115,7 @@ RawCellPatch SharedCellPatch(const std::string& tiles_dir, const TilePlan& plan,
     const auto marker = ReadTileDoneMarker(tiles_dir, tile.id);
     if (!marker || marker->points == 0) continue;
     const CellWindow core = CellWindowOfHalfOpen(tile.core, cell).Intersection(grid.extent);
-    PointCloudFile cloud(TileLasPath(tiles_dir, tile.id));
+    PointCloudFile cloud(TileCloudPath(tiles_dir, *marker));
     CloudChunk chunk;
     while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
       for (const Eigen::Vector3d& p : chunk.xyz) {
@@ -178,7 +177,7 @@ std::optional<DsmGrid> DsmGridOf(const JobConfig& config, const DepthBlock& inpu
   DsmGrid grid;
   grid.extent = CellWindowCovering(project_area, ResolveDsmCell(config, input, config.tiling.tile_size_m));
   grid.rule = DsmRuleOf(config.output);
-  grid.crs_wkt = RasterCrsWkt(ParseProjectCrs(config.crs));
+  grid.crs_wkt = ProjectCrsWkt(config.crs, CrsWktDialect::kGdal);
   grid.max_points_in_memory = MemoryBudgetBytes(config.resources.memory_gb) / 4 / 8;
   return grid;
 }

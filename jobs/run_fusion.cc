@@ -15,7 +15,7 @@
 #include "eval/eval_runner.h"
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
-#include "io/las_writer.h"
+#include "io/point_cloud_writer.h"
 #include "io/resource_usage.h"
 #include "io/view_identity.h"
 #include "jobs/auto_tiling.h"
@@ -90,7 +90,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
   for (const auto& v : s.views) {
     views.push_back({{"name", v.name}, {"input_pixels", v.input_pixels}, {"output_points", v.output_points}});
   }
-  nlohmann::json j = {{"version", VersionString()},
+  nlohmann::json j = {{"version", FullVersionString()},
                             {"config", config.source_file},
                             {"method", s.method},
                             {"fused_las", s.las_path},
@@ -193,36 +193,41 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
                tiled.failed.size());
 }
 
-// Untiled: the whole block through the same FuseViews as every tile, into one LAS writer.
+// Untiled: the whole block through the same FuseViews as every tile, into one cloud writer. The fusion's memory
+// is released before the writer is closed (a COPC is built out of core in Close, within the budget).
 void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
                 size_t views_in_flight, RunSummary* summary) {
   const auto& views = input.views();
-  const std::unique_ptr<FusionMethod> method = MakeFusionMethod(config.fusion, progress);
-  MethodGeometry geometry;
-  if (method->needs().block_geometry) {
-    std::vector<DepthRasterSize> sizes;
-    for (const View& view : views) sizes.push_back(input.DepthSize(view));
-    double z_min = 0, z_max = 0;
-    std::string z_source;
-    BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &z_source);
-    geometry = BlockMethodGeometry(input, sizes, z_min, z_max, NeighborOptionsOf(config.fusion.sac));
-    spdlog::info("{}: block GSD {:.3f} m from the geometry (heights [{:.1f}, {:.1f}] m from {})",
-                 NameOf(config.fusion.method), geometry.gsd_m, z_min, z_max, z_source);
-  }
-  LasWriter writer(summary->las_path, MakeLasOptions(config));
+  const std::unique_ptr<PointCloudWriter> writer = OpenPointCloudWriter(summary->las_path, FusedCloudOptions(config));
+  FusedViews fused;
+  bool superpixels = false;
   const std::string cache_dir = SuperpixelCacheDir(config);
-  const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress, views_in_flight);
-  const FusedViews fused = FuseViews(*method, source, &geometry, FusionScope{}, writer);
+  {
+    const std::unique_ptr<FusionMethod> method = MakeFusionMethod(config.fusion, progress);
+    superpixels = method->needs().superpixels;
+    MethodGeometry geometry;
+    if (method->needs().block_geometry) {
+      std::vector<DepthRasterSize> sizes;
+      for (const View& view : views) sizes.push_back(input.DepthSize(view));
+      double z_min = 0, z_max = 0;
+      std::string z_source;
+      BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &z_source);
+      geometry = BlockMethodGeometry(input, sizes, z_min, z_max, NeighborOptionsOf(config.fusion.sac));
+      spdlog::info("{}: block GSD {:.3f} m from the geometry (heights [{:.1f}, {:.1f}] m from {})",
+                   NameOf(config.fusion.method), geometry.gsd_m, z_min, z_max, z_source);
+    }
+    const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress, views_in_flight);
+    fused = FuseViews(*method, source, &geometry, FusionScope{}, *writer);
+  }
   summary->superpixels_computed = fused.superpixels_computed;
   summary->superpixel_seconds = fused.load_seconds;
   spdlog::info("{} views loaded in {:.1f} s{}", views.size(), fused.load_seconds,
-               method->needs().superpixels
-                   ? fmt::format(" (superpixels: {} computed, {} reused from {})", fused.superpixels_computed,
-                                 views.size() - fused.superpixels_computed, cache_dir)
-                   : std::string());
+               superpixels ? fmt::format(" (superpixels: {} computed, {} reused from {})", fused.superpixels_computed,
+                                         views.size() - fused.superpixels_computed, cache_dir)
+                           : std::string());
   SetFusionSummary(fused.stats, summary);
-  writer.Close();
-  summary->output_points = writer.num_points();
+  writer->Close();
+  summary->output_points = writer->num_points();
   // The DSM over the project area, the same extent a tiled run of the block has (the one-tile plan's area).
   if (const std::optional<DsmGrid> dsm = DsmGridOf(config, input, BuildTilePlan(input, config.tiling).grid.area())) {
     summary->dsm = MakeUntiledDsm(config, *dsm, summary->las_path);

@@ -11,6 +11,7 @@
 #include "io/atomic_file.h"
 #include "io/colour_raster_io.h"
 #include "io/superpixel_io.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -26,7 +27,7 @@ std::string RecordPath(const std::string& cache_path) {
 void WriteCacheRecord(const std::string& cache_path, const ViewIdentity& inputs) {
   const nlohmann::json j = {{"inputs", nlohmann::json::parse(ViewIdentityJson(inputs))},
                             {"file", nlohmann::json::parse(FileIdentityJson(IdentifyFile(cache_path)))}};
-  WriteFileAtomically(RecordPath(cache_path), j.dump(2) + "\n");
+  WriteFileAtomically(RecordPath(cache_path), JsonText(j, 2) + "\n");
 }
 
 // "" when the cache file at `cache_path` (which exists) was made from inputs equal to `inputs` in `parts` and is

@@ -11,6 +11,7 @@
 #include "jobs/dsm_product.h"
 #include "jobs/las_options.h"
 #include "jobs/open_input.h"
+#include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tile_fusion.h"
 #include "tiles/tile_manifest.h"
@@ -56,7 +57,7 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   if (tile == nullptr) {
     throw ConfigError("--id " + id + ": not a tile with views of this job (see `sacfuse plan CONFIG --list`)");
   }
-  TileJob job{config, *input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
+  TileJob job{config, *input, plan, TileCloudOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
               identity.views, /*caches_ready=*/false, {}};
   const std::optional<DsmGrid> dsm = DsmGridOf(config, *input, plan.grid.area());
   std::optional<DsmTileProduct> dsm_product;
@@ -64,7 +65,7 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   fs::create_directories(job.tiles_dir);
   const TileInputs inputs = TileInputsOf(*tile, input->views(), identity.views);
   if (VerifyTileDone(job.tiles_dir, id, job.hash, true, &inputs).done) return {};
-  RecordTiledRunState(config, plan, job.las, 1);
+  RecordTiledRunState(config, plan, job.cloud.las, 1);
   MethodTileFuser fuser(config, *input, plan, identity.views);
   return WorkOnTile(job, *tile, /*forced=*/false, nullptr, fuser);
 }
@@ -78,6 +79,7 @@ MergeJobOutcome MergeJob(const JobConfig& given) {
   out.fused_las_path = FusedLasPath(config);
   out.missing = MissingTiles(config, *input, plan, identity.views);
   if (!out.missing.empty()) return out;
+  RemoveTemporaryFilesOfKilledRuns(config);
   out.merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), out.fused_las_path);
   if (const std::optional<DsmGrid> dsm = DsmGridOf(config, *input, plan.grid.area())) {
     out.dsm = AssembleTiledDsm(config, plan, *dsm);

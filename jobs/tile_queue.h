@@ -32,7 +32,8 @@ struct MergeJobOutcome {
   DsmOutcome dsm;  // output.dsm: the DSM assembled from the tiles (jobs/dsm_product.h)
 };
 
-// `sacfuse merge`: ConfigError unless the config is a tiled run.
+// `sacfuse merge`: ConfigError unless the config is a tiled run. Deletes the temporary files (and COPC work
+// folders) a killed run or merge left, as `sacfuse run` does (jobs/run_state.h), unless a worker holds a claim.
 MergeJobOutcome MergeJob(const JobConfig& config);
 
 }  // namespace sacfuse

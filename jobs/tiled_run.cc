@@ -52,7 +52,7 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   if (needs.consistency_graphs) {
     throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
   }
-  TileJob job{config, input, plan, TileLasOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
+  TileJob job{config, input, plan, TileCloudOptions(config, plan), TilesDir(config), ResultSettingsHash(config),
               identities, /*caches_ready=*/true, {}};
   const std::optional<DsmGrid> dsm = DsmGridOf(config, input, plan.grid.area());
   std::optional<DsmTileProduct> dsm_product;
@@ -63,7 +63,7 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   out.tiles_with_views = work.tiles_with_views;
   out.tiles_skipped = work.tiles_skipped;
   out.tiles_rerun_for_inputs = work.rerun_for_inputs;
-  RecordTiledRunState(config, plan, job.las, work.todo.size());
+  RecordTiledRunState(config, plan, job.cloud.las, work.todo.size());
   if (!work.todo.empty()) {
     MakeViewCaches(config, input, plan, identities, needs.superpixels, work, progress, views_in_flight, &out);
   }

@@ -48,7 +48,7 @@ struct TiledRunOutcome {
 // `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done; so is every tile whose
 // recorded inputs differ from `identities` (the views' current ones; logged with the views that changed).
 // fused_las_path is replaced (by a rename) only by a complete merge: a run that fails leaves the previous one.
-// Every LAS is written with jobs/las_options.h (tiles: TileLasOptions; the merged cloud: FusedCloudOptions).
+// Every cloud is written with jobs/las_options.h (tiles: TileCloudOptions; the merged cloud: FusedCloudOptions).
 // `views_in_flight`: views the superpixel pass prepares at once (TilingDecision::views_in_flight).
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<ViewIdentity>& identities,

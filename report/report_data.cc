@@ -90,6 +90,7 @@ ReportRun ParseRunReportJson(const std::string& text) {
       r.views.push_back(c);
     }
   }
+  if (j.contains("warnings")) r.input_warnings = j.at("warnings").get<std::vector<std::string>>();
   if (j.contains("sac")) {
     const auto& s = j["sac"];
     r.has_sac = true;
@@ -176,6 +177,7 @@ std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::str
         t.status = TileStatus::kDone;
         if (const auto m = ReadTileDoneMarker(tiles_dir, t.id)) {
           t.points = m->points;
+          t.file = TileCloudPath(tiles_dir, *m);
           t.views = m->views;
           t.seconds = m->seconds;
           t.peak_rss_mib = m->peak_rss_mib;

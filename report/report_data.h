@@ -46,6 +46,9 @@ struct ReportRun {
   uint64_t sac_nodes = 0, sac_netlets = 0, sac_nodes_relabelled = 0;
   uint64_t sac_pixels_collapsed = 0, sac_pixels_kept_uncovered = 0, sac_pixels_outliers = 0;
   std::vector<std::pair<std::string, std::string>> failed_tiles;  // id, reason
+  // run_report.json "warnings": the run's warnings about its input (io/input_warnings.h), e.g. defaults that
+  // replaced missing input data.
+  std::vector<std::string> input_warnings;
 };
 
 struct ReportCloud {

@@ -1,4 +1,5 @@
 #include "report/report_figures.h"
+#include "io/json_text.h"
 
 #include <nlohmann/json.hpp>
 
@@ -52,7 +53,7 @@ std::string ReportFiguresToJson(const ReportFigures& f) {
   j["map_seconds"] = f.map_seconds;
   j["profile_seconds"] = f.profile_seconds;
   j["peak_rss_mib"] = f.peak_rss_mib;
-  return j.dump(2) + "\n";
+  return JsonText(j, 2) + "\n";
 }
 
 ReportFigures ReportFiguresFromJson(const std::string& text) {

@@ -6,6 +6,7 @@
 #include <tuple>
 #include <utility>
 
+#include "config/version.h"
 #include "report/report_histogram.h"
 #include "report/report_text.h"
 #include "report/report_tile_map.h"
@@ -73,8 +74,9 @@ std::string Header(const ReportData& d) {
   std::ostringstream s;
   s << "<header><h1>sacfuse run report</h1><div class='sub'>" << EscapeHtml(d.output_dir);
   if (!d.run.method.empty()) s << " &middot; method <b>" << EscapeHtml(d.run.method) << "</b>";
-  if (!d.run.version.empty()) s << " &middot; " << EscapeHtml(d.run.version);
-  s << " &middot; report written " << EscapeHtml(d.generated_at) << "</div></header>\n";
+  if (!d.run.version.empty()) s << " &middot; run by " << EscapeHtml(d.run.version);
+  s << " &middot; report written " << EscapeHtml(d.generated_at) << " by " << EscapeHtml(FullVersionString())
+    << "</div></header>\n";
   return s.str();
 }
 
@@ -84,6 +86,9 @@ std::string Warnings(const ReportData& d) {
     s << "<div class='warn'><b>" << d.run.failed_tiles.size()
       << " tiles failed; " << d.cloud.name << " was not merged.</b> See the tile map below and rerun them with "
       << "<code>sacfuse run CONFIG --tiles ID,...</code>.</div>\n";
+  }
+  for (const std::string& w : d.run.input_warnings) {
+    s << "<div class='warn'><b>Input:</b> " << EscapeHtml(w) << "</div>\n";
   }
   for (const std::string& w : d.warnings) s << "<div class='warn'>" << EscapeHtml(w) << "</div>\n";
   return s.str();

@@ -21,6 +21,7 @@ struct ReportTile {
   TileStatus status = TileStatus::kPending;
   std::string reason;        // failed: the error; pending: why not done
   uint64_t points = 0;       // done: points in its core
+  std::string file;          // done: its point file (tiles/<id>.laz or <id>.copc.laz)
   uint64_t views = 0;        // done: views it used
   double seconds = 0.0;      // done: wall time
   double peak_rss_mib = 0.0;             // done: process peak RSS when it finished

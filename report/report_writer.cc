@@ -99,14 +99,13 @@ MapFigure WriteDsmFigure(const JobConfig& config, const ReportOptions& o, const 
 
 // The files holding the fused points of the strip: for a tiled run whose tiles are all done and placed, the tile
 // files whose core meets the strip (far less than fused.las); else fused.las.
-std::vector<std::string> AfterFiles(const ReportData& d, const JobConfig& config, const Box2d& strip_box,
-                                    std::string* source) {
+std::vector<std::string> AfterFiles(const ReportData& d, const Box2d& strip_box, std::string* source) {
   if (d.tiled && !d.tiles.empty()) {
     std::vector<std::string> files;
     bool usable = true;
     for (const ReportTile& t : d.tiles) {
       usable = usable && t.status == TileStatus::kDone && t.has_core;
-      if (usable && t.points > 0 && t.core.Intersects(strip_box)) files.push_back(TileLasPath(TilesDir(config), t.id));
+      if (usable && t.points > 0 && t.core.Intersects(strip_box)) files.push_back(t.file);
     }
     if (usable) {
       *source = std::to_string(files.size()) + " tile files";
@@ -164,8 +163,8 @@ CrossSectionInputs CrossSectionFor(ReportData& d, const JobConfig& config, const
       d.warnings.push_back("reference " + config.evaluation.reference + " not found: not in the cross-section");
     }
   }
-  in.after_files = [&d, &config](const Box2d& box, std::string* source) {
-    return AfterFiles(d, config, box, source);
+  in.after_files = [&d](const Box2d& box, std::string* source) {
+    return AfterFiles(d, box, source);
   };
   return in;
 }

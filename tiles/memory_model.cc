@@ -1,5 +1,7 @@
 #include "tiles/memory_model.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 
@@ -31,6 +33,20 @@ BlockPixels MeasureBlockPixels(const DepthBlock& input) {
 uint64_t MemoryBudgetBytes(double memory_gb) { return static_cast<uint64_t>(std::llround(memory_gb * kGiB)); }
 
 uint64_t ClusterCacheBudgetBytes(uint64_t budget_bytes) { return std::min<uint64_t>(256 * kMiB, budget_bytes / 16); }
+
+std::string ByteSizeText(uint64_t bytes) {
+  char text[32];
+  if (bytes >= kGiB) {
+    std::snprintf(text, sizeof(text), "%.2f GiB", static_cast<double>(bytes) / kGiB);
+  } else if (bytes >= kMiB) {
+    std::snprintf(text, sizeof(text), "%.1f MiB", static_cast<double>(bytes) / kMiB);
+  } else if (bytes >= 1024) {
+    std::snprintf(text, sizeof(text), "%.0f KiB", static_cast<double>(bytes) / 1024);
+  } else {
+    std::snprintf(text, sizeof(text), "%llu B", static_cast<unsigned long long>(bytes));
+  }
+  return text;
+}
 
 uint64_t TileMemoryPoolBytes(uint64_t budget_bytes) {
   const uint64_t reserved = kProcessBaseBytes + ClusterCacheBudgetBytes(budget_bytes);

@@ -3,6 +3,7 @@
 // `resources.memory_gb` before anything is loaded. Coefficients were measured with /usr/bin/time -v on simulated
 // blocks (docs/concepts.md, "The memory budget") and carry a margin; peak RSS of real runs is reported next to the estimate.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "io/depth_block.h"
@@ -40,6 +41,9 @@ struct BlockPixels {
   uint64_t total_image_pixels() const;
 };
 BlockPixels MeasureBlockPixels(const DepthBlock& input);
+
+// A byte count for messages, with a unit that shows it: "1.25 GiB", "3.4 MiB", "512 KiB", "0 B".
+std::string ByteSizeText(uint64_t bytes);
 
 // Byte budget of resources.memory_gb.
 uint64_t MemoryBudgetBytes(double memory_gb);

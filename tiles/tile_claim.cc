@@ -1,7 +1,6 @@
 #include "tiles/tile_claim.h"
 
 #include <fcntl.h>
-#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -12,8 +11,6 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -33,13 +30,6 @@ std::atomic<uint64_t> g_counter{0};
 int64_t NowUnixS() {
   return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
       .count();
-}
-
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
 }
 
 std::optional<TileClaimInfo> ParseClaim(const std::string& text) {
@@ -125,21 +115,10 @@ std::string TileClaimPath(const std::string& tiles_dir, const std::string& id) {
   return (fs::path(tiles_dir) / (id + kClaimSuffix)).string();
 }
 
-std::string ThisHostName() {
-  char name[256] = {};
-  if (::gethostname(name, sizeof(name) - 1) != 0) return "unknown-host";
-  return name;
-}
-
 std::optional<TileClaimInfo> ReadTileClaim(const std::string& tiles_dir, const std::string& id) {
   const std::string path = TileClaimPath(tiles_dir, id);
   if (!fs::exists(path)) return std::nullopt;
-  return ParseClaim(ReadText(path));
-}
-
-bool ProcessIsGone(const std::string& host, int64_t pid) {
-  if (host != ThisHostName() || pid <= 0) return false;
-  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+  return ParseClaim(ReadSmallFile(path));
 }
 
 bool ClaimIsStale(const TileClaimInfo& claim, double timeout_s) {
@@ -148,17 +127,13 @@ bool ClaimIsStale(const TileClaimInfo& claim, double timeout_s) {
 }
 
 std::string DescribeClaim(const TileClaimInfo& claim) {
-  char when[64] = "?";
-  const std::time_t t = static_cast<std::time_t>(claim.start_unix_s);
-  std::tm tm {};
-  if (::gmtime_r(&t, &tm) != nullptr) std::strftime(when, sizeof(when), "%Y-%m-%d %H:%M:%S UTC", &tm);
-  return claim.host + " pid " + std::to_string(claim.pid) + " since " + when;
+  return claim.host + " pid " + std::to_string(claim.pid) + " since " + UtcText(claim.start_unix_s * 1000000000);
 }
 
 bool TileClaimIsLive(const std::string& tiles_dir, const std::string& id, double timeout_s) {
   const std::string path = TileClaimPath(tiles_dir, id);
   if (!fs::exists(path)) return false;
-  return ContentIsLive(path, ReadText(path), timeout_s);
+  return ContentIsLive(path, ReadSmallFile(path), timeout_s);
 }
 
 bool AnyLiveTileClaim(const std::string& tiles_dir, double timeout_s) {
@@ -168,7 +143,7 @@ bool AnyLiveTileClaim(const std::string& tiles_dir, double timeout_s) {
     if (name.size() <= std::strlen(kClaimSuffix) ||
         name.compare(name.size() - std::strlen(kClaimSuffix), std::string::npos, kClaimSuffix) != 0)
       continue;
-    if (ContentIsLive(e.path().string(), ReadText(e.path().string()), timeout_s)) return true;
+    if (ContentIsLive(e.path().string(), ReadSmallFile(e.path().string()), timeout_s)) return true;
   }
   return false;
 }
@@ -193,7 +168,7 @@ ClaimAttempt TryClaimTile(const std::string& tiles_dir, const std::string& id, d
       attempt.token = me.token;
       return attempt;
     }
-    const std::string seen = ReadText(path);
+    const std::string seen = ReadSmallFile(path);
     if (ContentIsLive(path, seen, timeout_s)) {
       const auto holder = ParseClaim(seen);
       attempt.holder = holder ? DescribeClaim(*holder) : "another worker (claim being written)";
@@ -206,7 +181,7 @@ ClaimAttempt TryClaimTile(const std::string& tiles_dir, const std::string& id, d
       if (errno == ENOENT) continue;  // another worker moved or released it first
       throw Error(path + ": cannot move stale claim: " + std::strerror(errno));
     }
-    if (ReadText(moved) != seen) {
+    if (ReadSmallFile(moved) != seen) {
       if (::link(moved.c_str(), path.c_str()) != 0 && errno != EEXIST) {
         ::unlink(moved.c_str());
         throw Error(path + ": cannot restore a claim moved by mistake: " + std::strerror(errno));
@@ -229,7 +204,7 @@ size_t RemoveStaleTileClaims(const std::string& tiles_dir, double timeout_s) {
     const std::string name = e.path().filename().string();
     const size_t n = std::strlen(kClaimSuffix);
     if (name.size() <= n || name.compare(name.size() - n, n, kClaimSuffix) != 0) continue;
-    if (!ContentIsLive(e.path().string(), ReadText(e.path().string()), timeout_s))
+    if (!ContentIsLive(e.path().string(), ReadSmallFile(e.path().string()), timeout_s))
       stale.push_back(name.substr(0, name.size() - n));
   }
   size_t removed = 0;

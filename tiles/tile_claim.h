@@ -16,6 +16,8 @@
 #include <string>
 #include <utility>
 
+#include "io/process_identity.h"  // ThisHostName, ProcessIsGone
+
 namespace sacfuse {
 
 struct TileClaimInfo {
@@ -33,10 +35,6 @@ struct ClaimAttempt {
 };
 
 std::string TileClaimPath(const std::string& tiles_dir, const std::string& id);
-std::string ThisHostName();
-// Whether process `pid` of `host` is known to be gone: only on this host (kill(pid, 0) fails with ESRCH); false
-// for other hosts and pid <= 0.
-bool ProcessIsGone(const std::string& host, int64_t pid);
 
 // The claim of a tile, nullopt when there is none or it cannot be parsed.
 std::optional<TileClaimInfo> ReadTileClaim(const std::string& tiles_dir, const std::string& id);

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -12,6 +11,7 @@
 #include "config/result_settings.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -19,18 +19,11 @@ namespace {
 
 constexpr double kOffsetSnapM = 1000.0;
 
-std::string ReadText(const std::string& path) {
-  std::ifstream in(path);
-  std::ostringstream os;
-  os << in.rdbuf();
-  return os.str();
-}
-
 // Logs what changed since the last run's settings and stores the current ones.
 void RecordSettings(const std::string& tiles_dir, const std::string& settings, size_t tiles_to_compute) {
   const std::string path = (fs::path(tiles_dir) / "run_config.yaml").string();
   if (fs::exists(path)) {
-    const std::vector<std::string> changed = ChangedResultSettings(ReadText(path), settings);
+    const std::vector<std::string> changed = ChangedResultSettings(ReadSmallFile(path), settings);
     if (!changed.empty()) {
       std::string keys;
       for (const auto& c : changed) keys += (keys.empty() ? "" : ", ") + c;
@@ -94,7 +87,7 @@ void TileManifest::Write(const std::string& tiles_dir) const {
                             {"offset", {offset.x(), offset.y(), offset.z()}},
                             {"tiles", tiles},
                             {"tiles_without_views", tiles_without_views}};
-  WriteFileAtomically(Path(tiles_dir), j.dump(2) + "\n");
+  WriteFileAtomically(Path(tiles_dir), JsonText(j, 2) + "\n");
 }
 
 Eigen::Vector3d SharedTileOffset(const TilePlan& plan) {

@@ -12,6 +12,7 @@
 #include "io/atomic_file.h"
 #include "io/file_checksum.h"
 #include "io/las_reader.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
@@ -104,12 +105,16 @@ TileInputs TileInputsOf(const PlannedTile& tile, const std::vector<View>& views,
   inputs.core = BoxOf(tile.core);
   inputs.halo = BoxOf(tile.halo);
   for (const TileViewWindow& tw : tile.views) {
-    inputs.views.push_back({tw.view, views.at(tw.view).name, tw.window, identities.at(tw.view)});
+    // The name as the marker carries it (io/json_text.h), so a name with bytes that are not UTF-8 compares equal.
+    inputs.views.push_back({tw.view, ValidUtf8(views.at(tw.view).name), tw.window, identities.at(tw.view)});
   }
   return inputs;
 }
 
-std::string TileLasPath(const std::string& tiles_dir, const std::string& id) { return Path(tiles_dir, id + ".laz"); }
+std::string TileCloudFileName(const std::string& id, bool copc) { return id + (copc ? ".copc.laz" : ".laz"); }
+std::string TileCloudPath(const std::string& tiles_dir, const TileDoneMarker& marker) {
+  return Path(tiles_dir, marker.file.empty() ? TileCloudFileName(marker.id, false) : marker.file);
+}
 std::string TileDonePath(const std::string& tiles_dir, const std::string& id) {
   return Path(tiles_dir, id + ".done.json");
 }
@@ -125,11 +130,12 @@ TileProductFile DescribeTileProduct(const std::string& tiles_dir, const std::str
   return {suffix, fs::file_size(path), HexDigest(Fnv1a64File(path))};
 }
 
-TileDoneMarker DescribeTileLas(const std::string& tiles_dir, const std::string& id, bool has_las) {
+TileDoneMarker DescribeTileFile(const std::string& tiles_dir, const std::string& id, const std::string& file) {
   TileDoneMarker m;
   m.id = id;
-  if (!has_las) return m;
-  const std::string las = TileLasPath(tiles_dir, id);
+  if (file.empty()) return m;
+  m.file = file;
+  const std::string las = Path(tiles_dir, file);
   m.file_size = fs::file_size(las);
   const LasHeader header = LasReader(las).header();
   m.points = header.point_count;
@@ -147,6 +153,7 @@ void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& m) 
   nlohmann::json j = {{"id", m.id},
                             {"config_hash", m.config_hash},
                             {"points", m.points},
+                            {"file", m.file},
                             {"file_size", m.file_size},
                             {"checksum_fnv1a64", m.checksum},
                             {"min", m.min},
@@ -164,7 +171,7 @@ void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& m) 
     }
     j["products"] = products;
   }
-  WriteFileAtomically(TileDonePath(tiles_dir, m.id), j.dump(2) + "\n");
+  WriteFileAtomically(TileDonePath(tiles_dir, m.id), JsonText(j, 2) + "\n");
 }
 
 std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, const std::string& id) {
@@ -175,6 +182,7 @@ std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, c
     m.id = j->at("id").get<std::string>();
     m.config_hash = j->at("config_hash").get<std::string>();
     m.points = j->at("points").get<uint64_t>();
+    m.file = j->value("file", std::string());
     m.file_size = j->at("file_size").get<uint64_t>();
     m.checksum = j->at("checksum_fnv1a64").get<std::string>();
     m.min = j->at("min").get<std::array<double, 3>>();
@@ -233,7 +241,7 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
       return fail(e.what());
     }
   }
-  const std::string las = TileLasPath(tiles_dir, id);
+  const std::string las = TileCloudPath(tiles_dir, *m);
   const std::string name = fs::path(las).filename().string();
   if (m->points == 0) {
     if (fs::exists(las, ec)) return fail("marker says empty but " + name + " exists");
@@ -257,7 +265,7 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
 
 void WriteTileFailedMarker(const std::string& tiles_dir, const std::string& id, const std::string& reason) {
   const nlohmann::json j = {{"id", id}, {"reason", reason}};
-  WriteFileAtomically(TileFailedPath(tiles_dir, id), j.dump(2) + "\n");
+  WriteFileAtomically(TileFailedPath(tiles_dir, id), JsonText(j, 2) + "\n");
 }
 
 std::optional<std::string> ReadTileFailedReason(const std::string& tiles_dir, const std::string& id) {
@@ -272,7 +280,8 @@ void ClearTileState(const std::string& tiles_dir, const std::string& id,
   // The marker goes first: a kill between the removals leaves no marker pointing at a missing file.
   fs::remove(TileDonePath(tiles_dir, id), ec);
   fs::remove(TileFailedPath(tiles_dir, id), ec);
-  fs::remove(TileLasPath(tiles_dir, id), ec);
+  fs::remove(Path(tiles_dir, TileCloudFileName(id, false)), ec);
+  fs::remove(Path(tiles_dir, TileCloudFileName(id, true)), ec);
   for (const std::string& suffix : product_suffixes) fs::remove(TileProductPath(tiles_dir, id, suffix), ec);
   fs::remove(Path(tiles_dir, id + ".las"), ec);  // written by versions before the tiles were LAZ
 }

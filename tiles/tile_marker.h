@@ -3,9 +3,12 @@
 //   <id>.laz        the tile's core points, LAZ (absent for a tile whose core got no points). Compressed: at
 //                   Dortmund scale the tile files were a third of a run's disk (issue 13). Tiles of versions that
 //                   wrote <id>.las are not done for this one (recomputed; ClearTileState removes the old file).
+//   <id>.copc.laz   instead of <id>.laz when the run that computed the tile wrote COPC (output.format copc), so
+//                   that the tile index DIR/tiles.vpc streams in viewers; the done marker names the tile's file,
+//                   so a later run with another output.format keeps done tiles as they are.
 //   <id>.<suffix>   the tile's product files (tiles/tile_product.h: e.g. <id>.dsm.tif, its window of the DSM)
-//   <id>.done.json  written atomically AFTER <id>.laz and its product files are renamed into place: count, size,
-//                   bounds, checksum, and each product file's size and checksum
+//   <id>.done.json  written atomically AFTER the point file and the product files are renamed into place: file,
+//                   count, size, bounds, checksum, and each product file's size and checksum
 //   <id>.failed.json  why the tile's last attempt threw
 // A tile is done only when its marker parses, names the current result-settings hash, its inputs (below) are the
 // current ones, its points per view add up to its count (the merge takes them from here, it does not decode the
@@ -54,9 +57,10 @@ struct TileProductFile {
 struct TileDoneMarker {
   std::string id;
   std::string config_hash;  // ResultSettingsHash of the run that wrote it
-  uint64_t points = 0;      // 0: no LAS file
-  uint64_t file_size = 0;   // bytes of <id>.laz
-  std::string checksum;     // FNV-1a 64 of every byte of <id>.laz, hex ("" when points == 0)
+  uint64_t points = 0;      // 0: no point file
+  std::string file;         // the point file's name in DIR/tiles: <id>.laz or <id>.copc.laz ("" when points == 0)
+  uint64_t file_size = 0;   // its bytes
+  std::string checksum;     // FNV-1a 64 of every byte of the file, hex ("" when points == 0)
   std::array<double, 3> min = {0, 0, 0}, max = {0, 0, 0};  // header bounds
   uint64_t views = 0;                                      // views the tile used
   // Points of <id>.laz per source view: (the block's view index, points), views with points only, ascending.
@@ -76,8 +80,10 @@ struct TileCheck {
   std::vector<std::string> input_changes;
 };
 
-// DIR/tiles/<id>.laz: the tile's points (a LAS-format file, compressed).
-std::string TileLasPath(const std::string& tiles_dir, const std::string& id);
+// Name of a tile's point file in DIR/tiles: <id>.laz (LAZ), or <id>.copc.laz (COPC).
+std::string TileCloudFileName(const std::string& id, bool copc);
+// The point file a done marker names (markers of versions before COPC tiles name none: <id>.laz).
+std::string TileCloudPath(const std::string& tiles_dir, const TileDoneMarker& marker);
 std::string TileDonePath(const std::string& tiles_dir, const std::string& id);
 std::string TileFailedPath(const std::string& tiles_dir, const std::string& id);
 // DIR/tiles/<id>.<suffix>: a product file of the tile.
@@ -85,8 +91,9 @@ std::string TileProductPath(const std::string& tiles_dir, const std::string& id,
 // The record of a written product file (size and checksum).
 TileProductFile DescribeTileProduct(const std::string& tiles_dir, const std::string& id, const std::string& suffix);
 
-// Fills size, count, bounds and checksum from a finished tile LAS (points > 0), or the empty-tile fields.
-TileDoneMarker DescribeTileLas(const std::string& tiles_dir, const std::string& id, bool has_las);
+// Fills file, size, count, bounds and checksum from a finished tile point file named `file` in tiles_dir, or
+// the empty-tile fields when `file` is "".
+TileDoneMarker DescribeTileFile(const std::string& tiles_dir, const std::string& id, const std::string& file);
 void WriteTileDoneMarker(const std::string& tiles_dir, const TileDoneMarker& marker);
 std::optional<TileDoneMarker> ReadTileDoneMarker(const std::string& tiles_dir, const std::string& id);
 
@@ -98,8 +105,8 @@ TileCheck VerifyTileDone(const std::string& tiles_dir, const std::string& id, co
 
 void WriteTileFailedMarker(const std::string& tiles_dir, const std::string& id, const std::string& reason);
 std::optional<std::string> ReadTileFailedReason(const std::string& tiles_dir, const std::string& id);
-// Removes a tile's done/failed markers, point file and the product files named by `product_suffixes` (before it is
-// recomputed), and an <id>.las of an older version.
+// Removes a tile's done/failed markers, point file, LAZ or COPC, and the product files named by `product_suffixes`
+// (before it is recomputed), and an <id>.las of an older version.
 void ClearTileState(const std::string& tiles_dir, const std::string& id,
                     const std::vector<std::string>& product_suffixes = {});
 

@@ -2,6 +2,7 @@
 
 #include "io/atomic_file.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -21,7 +22,7 @@ class TileMarkerTest : public ::testing::Test {
   void SetUp() override {
     LasWriterOptions options;
     options.offset = Eigen::Vector3d(1000, 2000, 0);
-    LasWriter writer(TileLasPath(Dir(), "3_4"), options);
+    LasWriter writer(Las(), options);
     std::vector<FusedPoint> points(100);
     for (size_t i = 0; i < points.size(); ++i) {
       points[i].point_in_world = Eigen::Vector3d(1001 + 0.1 * i, 2002, 50 + 0.01 * i);
@@ -29,7 +30,7 @@ class TileMarkerTest : public ::testing::Test {
     }
     writer.Write(points.data(), points.size());
     writer.Close();
-    TileDoneMarker marker = DescribeTileLas(Dir(), "3_4", true);
+    TileDoneMarker marker = DescribeTileFile(Dir(), "3_4", TileCloudFileName("3_4", false));
     marker.config_hash = "hash-a";
     marker.views = 3;
     marker.points_per_view = kPointsPerView;
@@ -38,7 +39,7 @@ class TileMarkerTest : public ::testing::Test {
   // Of the 100 points above: view index i % 3.
   const std::vector<std::pair<uint32_t, uint64_t>> kPointsPerView = {{0, 34}, {1, 33}, {2, 33}};
   std::string Dir() const { return dir_.path().string(); }
-  std::string Las() const { return TileLasPath(Dir(), "3_4"); }
+  std::string Las() const { return (dir_ / "3_4.laz").string(); }
 
   TempDir dir_;
 };
@@ -48,6 +49,8 @@ TEST_F(TileMarkerTest, CompleteTileIsDoneAndMarkerRoundTrips) {
   const auto marker = ReadTileDoneMarker(Dir(), "3_4");
   ASSERT_TRUE(marker);
   EXPECT_EQ(marker->points, 100u);
+  EXPECT_EQ(marker->file, "3_4.laz");
+  EXPECT_EQ(TileCloudPath(Dir(), *marker), Las());
   EXPECT_EQ(marker->file_size, fs::file_size(Las()));
   EXPECT_EQ(marker->checksum.size(), 16u);
   EXPECT_NEAR(marker->min[0], 1001.0, 1e-9);
@@ -68,6 +71,24 @@ TEST_F(TileMarkerTest, PointsPerViewMustAddUpToThePoints) {
     EXPECT_FALSE(check.done);
     EXPECT_NE(check.reason.find("points per view add up to"), std::string::npos) << check.reason;
   }
+}
+
+// The marker names the tile's point file: a COPC tile (<id>.copc.laz) is checked as such, and a marker of a version
+// before COPC tiles (no "file") names <id>.laz.
+TEST_F(TileMarkerTest, MarkerNamesItsPointFile) {
+  EXPECT_EQ(TileCloudFileName("3_4", true), "3_4.copc.laz");
+  fs::rename(Las(), dir_ / "3_4.copc.laz");
+  TileDoneMarker marker = *ReadTileDoneMarker(Dir(), "3_4");
+  EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);  // names 3_4.laz, which is gone
+  marker.file = "3_4.copc.laz";
+  WriteTileDoneMarker(Dir(), marker);
+  EXPECT_TRUE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
+  marker.file.clear();  // as written by older versions
+  WriteTileDoneMarker(Dir(), marker);
+  EXPECT_EQ(TileCloudPath(Dir(), *ReadTileDoneMarker(Dir(), "3_4")), Las());
+  EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
+  ClearTileState(Dir(), "3_4");
+  EXPECT_FALSE(fs::exists(dir_ / "3_4.copc.laz"));
 }
 
 TEST_F(TileMarkerTest, WrongConfigHashIsNotDone) {
@@ -107,11 +128,11 @@ TEST_F(TileMarkerTest, MissingLasOrBrokenMarkerIsNotDone) {
 }
 
 TEST_F(TileMarkerTest, EmptyTileIsDoneWithoutLasButNotWithAStrayOne) {
-  TileDoneMarker empty = DescribeTileLas(Dir(), "0_0", false);
+  TileDoneMarker empty = DescribeTileFile(Dir(), "0_0", "");
   empty.config_hash = "hash-a";
   WriteTileDoneMarker(Dir(), empty);
   EXPECT_TRUE(VerifyTileDone(Dir(), "0_0", "hash-a").done);
-  fs::copy_file(Las(), TileLasPath(Dir(), "0_0"));
+  fs::copy_file(Las(), dir_ / "0_0.laz");
   EXPECT_FALSE(VerifyTileDone(Dir(), "0_0", "hash-a").done);
 }
 
@@ -122,13 +143,20 @@ TEST_F(TileMarkerTest, FailedMarkerAndClearingAndTemporaryFiles) {
   ClearTileState(Dir(), "3_4");
   EXPECT_FALSE(fs::exists(Las()));
   EXPECT_FALSE(fs::exists(dir_ / "3_4.las"));
-  EXPECT_EQ(fs::path(TileLasPath(Dir(), "3_4")).filename(), "3_4.laz");
+  EXPECT_EQ(TileCloudFileName("3_4", false), "3_4.laz");
   EXPECT_FALSE(ReadTileFailedReason(Dir(), "3_4"));
   EXPECT_FALSE(VerifyTileDone(Dir(), "3_4", "hash-a").done);
   std::ofstream(Las() + ".tmp-123-0") << "partial";
   std::ofstream(dir_ / "keep.las") << "x";
   std::ofstream(dir_ / "notes.tmp-draft") << "not ours";  // not the TemporaryPathFor pattern: kept
-  EXPECT_EQ(RemoveTemporaryFiles(Dir()), std::vector<std::string>{Las() + ".tmp-123-0"});
+  // A work folder named like a temporary file (a COPC build's, io/copc_writer.h) goes with its contents.
+  fs::create_directories(dir_ / "fused.copc.laz.tmp-123-1");
+  std::ofstream(dir_ / "fused.copc.laz.tmp-123-1" / "spill.las") << "spilled points";
+  const auto any_owner = [](const TemporaryFileOwner&) { return true; };  // io/atomic_file_test has the rules
+  std::vector<std::string> removed = RemoveTemporaryFiles(Dir(), false, any_owner);
+  std::sort(removed.begin(), removed.end());
+  EXPECT_EQ(removed, (std::vector<std::string>{Las() + ".tmp-123-0", (dir_ / "fused.copc.laz.tmp-123-1").string()}));
+  EXPECT_FALSE(fs::exists(dir_ / "fused.copc.laz.tmp-123-1"));
   EXPECT_TRUE(fs::exists(dir_ / "keep.las"));
   EXPECT_TRUE(fs::exists(dir_ / "notes.tmp-draft"));
 }

@@ -1,10 +1,12 @@
 #pragma once
-// The merge step of a tiled run: the tile LAS files, in grid order, streamed chunk by chunk into one LasWriter
+// The merge step of a tiled run: the tile files, in grid order, streamed chunk by chunk into one point cloud writer
 // (never the whole cloud in memory). Every tile must carry exactly the writer's scale and offset, so the
 // stored integers are copied unchanged. Into LAZ the tiles' full LAZ chunks are copied without decoding
 // (LasWriter::AppendLaz): only each tile's last, shorter chunk is decoded and coded again. The cloud holds the
 // tiles' full chunks in grid order, with the tiles' last points coded into chunks of their own as they gather
-// (the same points as a point-by-point merge, deterministic, in another order).
+// (the same points as a point-by-point merge, deterministic, in another order). Into COPC every point is
+// decoded and the octree built out of core (io/copc_writer.h). Then DIR/tiles.vpc indexes the tile files
+// (io/vpc_writer.h).
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -12,7 +14,7 @@
 
 #include "config/job_config.h"
 #include "io/depth_block.h"
-#include "io/las_writer.h"
+#include "io/point_cloud_writer.h"
 #include "io/view_identity.h"
 #include "tiles/tile_plan.h"
 
@@ -27,12 +29,13 @@ struct MergeResult {
 // must be set. Throws InputError naming a tile whose scale or offset differs, or that cannot be read; leaves no
 // partial output.
 uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
-                      const LasWriterOptions& options,
+                      const CloudFileOptions& options,
                       const std::function<void(size_t done, size_t total)>& progress = {});
 
-// Streams the done tiles' LAS files, grid order, into `fused_las_path`; `las.offset` must be the plan's shared
-// offset (tiles/tile_manifest.h). Throws Error when a tile with views has no done marker.
-MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const LasWriterOptions& las,
+// Streams the done tiles' files, grid order, into `fused_las_path`; `cloud.las.offset` must be the plan's shared
+// offset (tiles/tile_manifest.h). Then writes DIR/tiles.vpc over the tile files. Throws Error when a tile with
+// views has no done marker.
+MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const CloudFileOptions& cloud,
                           const std::string& fused_las_path,
                           const std::function<void(const std::string& stage, size_t done, size_t total)>& progress =
                               {});

@@ -13,7 +13,9 @@
 #include "config/version.h"
 #include "core/error.h"
 #include "io/atomic_file.h"
+#include "io/input_warnings.h"
 #include "tiles/memory_model.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 namespace {
@@ -29,24 +31,29 @@ nlohmann::json BoxJson(const Box2d& b) { return {b.min.x(), b.min.y(), b.max.x()
 
 }  // namespace
 
-void BlockHeightRange(std::vector<double> z, const TilingOptions& options, double* z_min_m, double* z_max_m,
+void BlockHeightRange(const DepthBlock& input, const TilingOptions& options, double* z_min_m, double* z_max_m,
                       std::string* source) {
+  std::vector<double> z = input.SceneHeights();
   if (z.empty()) {
     *z_min_m = options.z_min_m;
     *z_max_m = options.z_max_m;
     *source = "config";
+    WarnAboutInput(input.source(), fmt::format("no scene heights in the input (looked for: {}): the block's height range is "
+                                               "tiling.z_min_m .. z_max_m = [{}, {}] m from the config; footprints "
+                                               "and tiles hold only what lies in it",
+                                               input.SceneHeightsSource(), options.z_min_m, options.z_max_m));
     return;
   }
   *z_min_m = Percentile(z, 0.02) - kSparseHeightPaddingM;
   *z_max_m = Percentile(z, 0.98) + kSparseHeightPaddingM;
-  *source = "sparse points";
+  *source = input.SceneHeightsSource();
 }
 
 TilePlan BuildTilePlan(const DepthBlock& input, const TilingOptions& options) {
   ValidateTilingOptions(options);
   double z_min = 0, z_max = 0;
   std::string z_source;
-  BlockHeightRange(input.SceneHeights(), options, &z_min, &z_max, &z_source);
+  BlockHeightRange(input, options, &z_min, &z_max, &z_source);
   const auto& views = input.views();
   Box2d area;
   for (const View& view : views) area.Extend(FootprintBounds(view, z_min, z_max));
@@ -103,7 +110,7 @@ std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const st
                      {"memory_bytes", t.memory_bytes}});
   }
   const Box2d& area = plan.grid.area();
-  const nlohmann::json j = {{"version", VersionString()},
+  const nlohmann::json j = {{"version", FullVersionString()},
                             {"tile_size_m", plan.options.tile_size_m},
                             {"halo_m", plan.options.halo_m},
                             {"window_margin_px", plan.options.window_margin_px},
@@ -116,7 +123,7 @@ std::string TilePlanJson(const TilePlan& plan, const DepthBlock& input, const st
   nlohmann::json out = j;
   if (!config_hash.empty()) out["config_hash"] = config_hash;
   if (!inputs_hash.empty()) out["inputs_hash"] = inputs_hash;
-  return out.dump(2) + "\n";
+  return JsonText(out, 2) + "\n";
 }
 
 TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, const std::vector<ViewIdentity>& identities,

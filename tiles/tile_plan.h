@@ -36,14 +36,16 @@ struct TilePlan {
   TileGrid grid;
   TilingOptions options;
   double z_min_m = 0.0, z_max_m = 0.0;
-  std::string z_source;                       // "sparse points" | "config"
+  std::string z_source;                       // DepthBlock::SceneHeightsSource | "config"
   std::vector<DepthRasterSize> depth_sizes;   // per view
   std::vector<PlannedTile> tiles;             // grid order
 };
 
-// Height range of the block: 2nd..98th percentile of the sparse points' z padded by kSparseHeightPaddingM, or
-// the options' z_min_m/z_max_m when the model has no points. *source names which.
-void BlockHeightRange(std::vector<double> heights_m, const TilingOptions& options, double* z_min_m, double* z_max_m,
+// Height range of the block: 2nd..98th percentile of the input's scene heights (DepthBlock::SceneHeights: sparse
+// points, or a sample of the depth maps) padded by kSparseHeightPaddingM, or the options' z_min_m/z_max_m when
+// there are none (a warning naming the input, io/input_warnings.h: footprints and tiles then hold only what lies
+// in that range). *source names which.
+void BlockHeightRange(const DepthBlock& input, const TilingOptions& options, double* z_min_m, double* z_max_m,
                       std::string* source);
 
 // The plan of a workspace (reads only depth-map headers). Throws InputError when no view has a footprint.

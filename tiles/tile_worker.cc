@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <filesystem>
 #include <optional>
 
 #include <spdlog/spdlog.h>
@@ -19,19 +20,21 @@ TileFused ComputeTileFiles(const TileJob& job, const PlannedTile& tile, const Ti
   ClearTileState(job.tiles_dir, tile.id, ProductSuffixes(job));
   const auto start = std::chrono::steady_clock::now();
   TileFused fused;
-  bool has_las = false;
+  const std::string file = TileCloudFileName(tile.id, job.cloud.copc.has_value());
+  std::string written;
   {
-    LasWriter writer(TileLasPath(job.tiles_dir, tile.id), job.las);
-    fused = fuser.Fuse(tile, writer);
-    if (writer.num_points() > 0) {  // an empty tile writes no LAS (the writer removes its temporary file)
-      writer.Close();
-      has_las = true;
+    const std::unique_ptr<PointCloudWriter> writer =
+        OpenPointCloudWriter((std::filesystem::path(job.tiles_dir) / file).string(), job.cloud);
+    fused = fuser.Fuse(tile, *writer);
+    if (writer->num_points() > 0) {  // an empty tile writes no file (the writer removes its temporary file)
+      writer->Close();
+      written = file;
     }
   }
-  TileDoneMarker marker = DescribeTileLas(job.tiles_dir, tile.id, has_las);
+  TileDoneMarker marker = DescribeTileFile(job.tiles_dir, tile.id, written);
+  const std::string cloud_path = written.empty() ? "" : (std::filesystem::path(job.tiles_dir) / written).string();
   for (const TileProduct* product : job.products) {
-    for (const std::string& suffix : product->Make(tile, has_las ? TileLasPath(job.tiles_dir, tile.id) : "",
-                                                   job.tiles_dir)) {
+    for (const std::string& suffix : product->Make(tile, cloud_path, job.tiles_dir)) {
       marker.products.push_back(DescribeTileProduct(job.tiles_dir, tile.id, suffix));
     }
   }

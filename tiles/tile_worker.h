@@ -1,15 +1,15 @@
 #pragma once
 // One tile's work under its claim, the same for `sacfuse run` (tiles/tile_scheduler.h, many tiles on worker
 // threads) and `sacfuse tile --id` (jobs/tile_queue.h, one tile per process): claim it (tiles/tile_claim.h), skip it
-// when its done marker verifies, make the caches its views lack, check the memory guard, fuse it into <id>.las
-// through the injected TileFuser (tiles/tile_fuser.h) and write its done marker (tiles/tile_marker.h), or write
+// when its done marker verifies, make the caches its views lack, check the memory guard, fuse it into its point
+// file (<id>.laz, or <id>.copc.laz for COPC) through the injected TileFuser (tiles/tile_fuser.h) and write its done marker (tiles/tile_marker.h), or write
 // its failed marker.
 #include <string>
 #include <vector>
 
 #include "config/job_config.h"
 #include "io/depth_block.h"
-#include "io/las_writer.h"
+#include "io/point_cloud_writer.h"
 #include "io/view_identity.h"
 #include "tiles/memory_admission.h"
 #include "tiles/tile_fuser.h"
@@ -24,7 +24,7 @@ struct TileJob {
   const JobConfig& config;
   const DepthBlock& input;
   const TilePlan& plan;
-  LasWriterOptions las;   // with the plan's shared offset
+  CloudFileOptions cloud;  // with the plan's shared offset; copc set: the tiles are COPC
   std::string tiles_dir;  // DIR/tiles
   std::string hash;       // ResultSettingsHash(config)
   const std::vector<ViewIdentity>& identities;  // of every view (io/view_identity.h), by view index
@@ -57,7 +57,7 @@ struct TileWorkOutcome {
 TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool forced, MemoryAdmission* admission,
                            TileFuser& fuser);
 
-// Computes one tile (the caller holds its claim) into <id>.laz, its product files and <id>.done.json, after
+// Computes one tile (the caller holds its claim) into its point file, its product files and <id>.done.json, after
 // clearing its old state;
 // logs "computing tile <id>". Throws whatever the tile throws. `inputs` (TileInputsOf the tile) go into the done
 // marker.

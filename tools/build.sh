@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Configures (Release) and builds into ./build. Usage: tools/build.sh [--target NAME]... [extra cmake args]
+# Configures (Release) and builds into ./build (or $SACFUSE_BUILD_DIR). Usage: tools/build.sh [--target NAME]...
+# [extra cmake args]
 #   no --target: everything, sacfuse and every test (what tools/test.sh runs);
 #   --target sacfuse: only the binary and the libraries it links (what tools/demo.sh runs). The configuration is the
 #   same either way (SACFUSE_TESTS stays ON), so a later full build reuses every object the target build made.
@@ -23,5 +24,6 @@ else
   launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=)   # clears a launcher cached while ccache was installed
 fi
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@" >/dev/null
-cmake --build build -j"$jobs" ${targets[@]+"${targets[@]}"}
+build=${SACFUSE_BUILD_DIR:-build}
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Release "${launcher[@]}" "$@" >/dev/null
+cmake --build "$build" -j"$jobs" ${targets[@]+"${targets[@]}"}

@@ -20,7 +20,8 @@ PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev            # linear algebra, camera geometry
   libopencv-dev libopencv-contrib-dev   # images; ximgproc (SLIC) lives in contrib
-  libgeographiclib-dev     # UTM / geodetic conversions
+  libproj-dev proj-data    # PROJ: the project CRS, geodetic conversions, geoid grids, WKT (io/crs); proj-data holds
+                           # proj.db, which PROJ reads at run time
   libtbb-dev               # task parallelism
   libyaml-cpp-dev          # config
   libcli11-dev             # command line
@@ -34,6 +35,7 @@ PKGS=(
 TEST_PKGS=(
   parallel                 # GNU parallel: running `sacfuse tile` workers (tests/queue_e2e_test.cc)
   chromium                 # tests only: headless screenshot of the HTML run report (tests/report_e2e_test.cc)
+  gdal-bin proj-bin        # tests only: gdalsrsinfo and projinfo read back the CRS we write (tests/crs_e2e_test.cc)
   python3-gdal             # tests only: GDAL's COG validator and an independent reader of the DSM (tests/dsm_e2e_test.cc);
                            # also ../shared/aerial-bench/score_dsm.py (sacfuse bench --aerial-bench)
 )
@@ -54,8 +56,8 @@ fi
 if [ "$MODE" = build ]; then exit 0; fi
 
 # Optional: benchmarks (tools/bench, `sacfuse colmap-fusion`, tools/bench/compare_colmap.sh): COLMAP's
-# stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports; fuzzing
-# (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes. Building and the test suite do not need them
+# stereo_fusion as the comparison method, GNU time for peak RSS, jq to read the JSON reports; the package check
+# (tools/check_deb.sh): debootstrap; fuzzing (tools/fuzz.sh): clang with libFuzzer and the sanitizer runtimes. Building and the test suite do not need them
 # (the COLMAP test skips without it; tools/sanitize.sh uses the default compiler's sanitizers), so a package the
 # archive lacks (colmap is in Debian main for amd64/arm64 but not on every architecture or derivative) or a failed
 # install only warns.
@@ -63,7 +65,8 @@ OPTIONAL_PKGS=(
   colmap                   # COLMAP 3.8 (CPU build): stereo_fusion, the comparison of issue 4
   time                     # /usr/bin/time -v: wall time and peak RSS of `sacfuse run` in compare_colmap.sh
   jq                       # reading run_report.json / eval.json in compare_colmap.sh
-  python3-yaml             # tools/bench/config_with_output.sh (compare_colmap.sh, ab_time.sh, stage_ladder.sh)
+  debootstrap              # tools/check_deb.sh: a fresh Debian 12 root to install the .deb into (tools/package_deb.sh
+                           # needs only dpkg-dev, which build-essential brings)
   clang                    # tools/fuzz.sh: the libFuzzer targets of tests/fuzz are built with clang
   libclang-rt-14-dev       # tools/fuzz.sh: libFuzzer, ASan and UBSan runtimes of clang 14 (Debian 12)
   python3-numpy python3-scipy python3-opencv python3-open3d  # sacfuse bench --aerial-bench: ../shared/aerial-bench's

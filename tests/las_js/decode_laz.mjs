@@ -6,11 +6,12 @@
 //
 // "laz-perf": the npm package laz-perf (LASzip in C++ compiled to WASM), its LASZip reader.
 // "laz-rs":   laz-rs compiled to WASM as shipped inside @loaders.gl/las (the decoder behind its LAZRsLoader),
-//             its WasmLasZipDecompressor.
+//             its WasmLasZipDecompressor (tests/las_js/laz_rs.mjs; fixed-size chunks only, so it fails on COPC).
 // Each writes OUT_PREFIX.<decoder>.bin (count x record length bytes) and reports {count, record_length,
 // point_format} or {error} in the JSON printed on stdout. Exit code 0 unless the file cannot be read at all.
 import { readFileSync, writeFileSync } from 'node:fs';
 import lazPerfPackage from 'laz-perf';
+import { decodeFile } from './laz_rs.mjs';
 
 const [file, prefix] = process.argv.slice(2);
 if (!file || !prefix) {
@@ -49,19 +50,9 @@ async function lazPerf() {
 }
 
 async function lazRs() {
-  // Not among the package's exports: loaded by file URL from the installed package.
-  const dir = new URL('./node_modules/@loaders.gl/las/dist/libs/laz-rs-wasm/', import.meta.url);
-  const mod = await import(new URL('laz_rs_wasm.js', dir));
-  mod.initSync({ module: readFileSync(new URL('laz_rs_wasm_bg.wasm', dir)) });
-  const decompressor = new mod.WasmLasZipDecompressor(new Uint8Array(bytes));
-  try {
-    const out = new Uint8Array(count * recordLength);
-    if (count > 0) decompressor.decompress_many(out);
-    writeFileSync(`${prefix}.laz-rs.bin`, out);
-    return { count, record_length: recordLength, point_format: pointFormat };
-  } finally {
-    decompressor.free();
-  }
+  const out = decodeFile(bytes, count, recordLength);
+  writeFileSync(`${prefix}.laz-rs.bin`, out);
+  return { count, record_length: recordLength, point_format: pointFormat };
 }
 
 const result = { file, decoders: {} };

@@ -1,6 +1,10 @@
 #include "tests/support/test_support.h"
 
+#include <signal.h>
+
 #include <array>
+#include <chrono>
+#include <thread>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -79,6 +83,67 @@ int RunCommand(const std::string& command, std::string* output) {
   const int status = ::pclose(pipe);
   if (output != nullptr) *output = text;
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+BackgroundCommand::BackgroundCommand(const std::string& command, const std::vector<std::string>& env) {
+  const std::string out = (dir_ / "output").string();
+  pid_ = ::fork();
+  if (pid_ < 0) throw std::runtime_error("fork failed");
+  if (pid_ == 0) {
+    for (const std::string& e : env) ::putenv(const_cast<char*>(e.c_str()));
+    const std::string full = command + " >" + ShellQuote(out) + " 2>&1";
+    ::execl("/bin/sh", "sh", "-c", full.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+}
+
+BackgroundCommand::~BackgroundCommand() {
+  if (pid_ > 0 && !Finished()) {
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, &status_, 0);
+  }
+}
+
+bool BackgroundCommand::Finished() {
+  if (done_) return true;
+  if (::waitpid(pid_, &status_, WNOHANG) == pid_) done_ = true;
+  return done_;
+}
+
+int BackgroundCommand::Wait(std::string* output, double timeout_s) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (!Finished() && std::chrono::steady_clock::now() < give_up) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  if (!done_) {
+    ::kill(pid_, SIGKILL);
+    ::waitpid(pid_, &status_, 0);
+    done_ = true;
+    status_ = -1;
+  }
+  if (output != nullptr) *output = ReadFileBytes(dir_ / "output");
+  return status_ >= 0 && WIFEXITED(status_) ? WEXITSTATUS(status_) : -1;
+}
+
+std::string BackgroundCommand::Output() const { return ReadFileBytes(dir_ / "output"); }
+
+bool BackgroundCommand::WaitForOutput(const std::string& text, double timeout_s) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (Output().find(text) == std::string::npos) {
+    if (Finished() || std::chrono::steady_clock::now() >= give_up) return Output().find(text) != std::string::npos;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
+}
+
+bool WaitForFile(const std::filesystem::path& path, double timeout_s) {
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  std::error_code ec;
+  while (!std::filesystem::exists(path, ec)) {
+    if (std::chrono::steady_clock::now() >= give_up) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return true;
 }
 
 }  // namespace sacfuse::testing

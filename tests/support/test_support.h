@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace sacfuse::testing {
 
@@ -54,5 +55,34 @@ std::string ShellQuote(const std::filesystem::path& path);
 
 // Runs a shell command, returns its exit code; stdout+stderr go to *output when given.
 int RunCommand(const std::string& command, std::string* output = nullptr);
+
+// A shell command running in the background, its stdout+stderr collected in a file, for tests that race
+// processes (with io/test_pause.h's SACFUSE_TEST_PAUSE to make the race deterministic). `env` entries
+// ("NAME=value") are added to its environment. Killed (SIGKILL) if still running when destroyed.
+class BackgroundCommand {
+ public:
+  explicit BackgroundCommand(const std::string& command, const std::vector<std::string>& env = {});
+  ~BackgroundCommand();
+  BackgroundCommand(const BackgroundCommand&) = delete;
+  BackgroundCommand& operator=(const BackgroundCommand&) = delete;
+  int pid() const { return pid_; }
+  // Waits for it to end (at most `timeout_s`, then kills it and returns -1); its output into *output.
+  int Wait(std::string* output = nullptr, double timeout_s = 300);
+  // Whether it has ended (without waiting).
+  bool Finished();
+  // Its output so far.
+  std::string Output() const;
+  // Waits until its output contains `text`; false when it ends or `timeout_s` passes first.
+  bool WaitForOutput(const std::string& text, double timeout_s = 120);
+
+ private:
+  int pid_ = -1;
+  int status_ = -1;
+  bool done_ = false;
+  TempDir dir_;  // holds the output file
+};
+
+// Waits until `path` exists; false after `timeout_s`.
+bool WaitForFile(const std::filesystem::path& path, double timeout_s = 120);
 
 }  // namespace sacfuse::testing

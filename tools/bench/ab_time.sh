@@ -4,9 +4,9 @@
 #
 #   tools/bench/ab_time.sh CONFIG REPEATS BINARY...
 #
-# CONFIG is a sacfuse YAML (tools/bench/config_with_output.sh makes its relative paths absolute and
-# replaces output.dir): every run writes into a fresh WORK/out (WORK = $AB_TIME_DIR, default a temporary folder), so each starts cold (superpixels
-# recomputed unless the config names fusion.superpixel_cache_dir). For each repeat and each binary it prints one
+# CONFIG is a sacfuse YAML: every run writes into a fresh WORK/out (`--output-dir`, through timed_run.sh; WORK =
+# $AB_TIME_DIR, default a temporary folder), so each starts cold (superpixels recomputed unless the config names
+# fusion.superpixel_cache_dir). For each repeat and each binary it prints one
 # line: wall and CPU seconds of the job (run_report.json), SAC's stage seconds, the process's peak RSS
 # (/usr/bin/time), and whether the cloud is byte-identical to the first binary's cloud of the same repeat.
 # At the end, the median wall and CPU time of each binary and their ratios to the first binary.

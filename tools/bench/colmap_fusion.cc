@@ -170,7 +170,8 @@ ColmapFusionResult RunColmapFusion(const ColmapFusionRequest& request) {
   LasWriterOptions las = request.las;
   las.system_identifier = "sacfuse colmap-fusion";
   las.generating_software = "COLMAP stereo_fusion";
-  result.points = ConvertPlyToLas(result.ply_path, result.las_path, result.workspace.offset, las);
+  result.points =
+      ConvertPlyToLas(result.ply_path, result.las_path, result.workspace.offset + request.origin_m, las);
   result.convert_s = SecondsSince(start);
   spdlog::info("wrote {} points to {} in {:.1f} s", result.points, result.las_path, result.convert_s);
   return result;

@@ -8,12 +8,14 @@
 //     --output_path OUT/workspace/fused.ply --StereoFusion.num_threads N --StereoFusion.cache_size GB
 //     --StereoFusion.use_cache 0|1 --log_to_stderr 1` as a child process (child_process.h): wall time, peak RSS,
 //     CPU; its output goes to OUT/colmap.log;
-//  3. OUT/fused.las from fused.ply with the offset added back in double (ply_to_las.h).
+//  3. OUT/fused.las from fused.ply with the offset (and input.origin_m) added back in double (ply_to_las.h).
 // Scoring is the caller's (tools/cli uses the same RunEvaluation as `sacfuse run`).
 #include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "io/las_writer.h"
 #include "tools/bench/child_process.h"
@@ -30,6 +32,9 @@ struct ColmapFusionRequest {
   double memory_gb = 4.0;                // -> StereoFusion.cache_size (GB; only used with use_cache)
   bool use_cache = false;                // StereoFusion.use_cache: bounded memory, but single-threaded in 3.8
   LasWriterOptions las;                  // LAS version and scale as the job's output.* (offset: the shift's)
+  // input.origin_m: the workspace's coordinates are the CRS's minus this; added to every point, as `sacfuse run`
+  // adds it to the poses.
+  Eigen::Vector3d origin_m = Eigen::Vector3d::Zero();
   // More StereoFusion options as (name, value), e.g. ("max_normal_error", "180") -> --StereoFusion.max_normal_error
   // 180; a name given here replaces the value above (num_threads, cache_size, use_cache).
   std::vector<std::pair<std::string, std::string>> stereo_fusion_options;

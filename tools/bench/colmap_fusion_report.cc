@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/atomic_file.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 
@@ -60,7 +61,7 @@ std::string ColmapFusionToJson(const ColmapFusionRequest& request, const ColmapF
   } else {
     j["evaluation"] = nullptr;
   }
-  return j.dump(indent);
+  return JsonText(j, indent);
 }
 
 void WriteColmapFusionJson(const ColmapFusionRequest& request, const ColmapFusionResult& result,

@@ -5,13 +5,12 @@
 #
 # BLOCK_DIR is a block written by `sacfuse simulate` (its sacfuse.yaml names the workspace, the reference and the
 # evaluation settings). THREADS defaults to the number of cores; OUT_DIR to BLOCK_DIR/compare_colmap. The block is
-# only read: a copy of its config with absolute paths and output.dir = OUT_DIR/sacfuse is written to
-# OUT_DIR/sacfuse.yaml; OUT_DIR/sacfuse and OUT_DIR/colmap are recreated on every call (so sacfuse starts cold,
-# without cached superpixels).
+# only read: its config runs with --output-dir OUT_DIR/sacfuse; OUT_DIR/sacfuse and OUT_DIR/colmap are recreated on
+# every call (so sacfuse starts cold, without cached superpixels).
 #
 # Runs, one after the other:
-#   /usr/bin/time -v sacfuse run OUT_DIR/sacfuse.yaml --threads THREADS
-#   /usr/bin/time -v sacfuse colmap-fusion OUT_DIR/sacfuse.yaml --out OUT_DIR/colmap --threads THREADS
+#   /usr/bin/time -v sacfuse run BLOCK_DIR/sacfuse.yaml --output-dir OUT_DIR/sacfuse --threads THREADS
+#   /usr/bin/time -v sacfuse colmap-fusion BLOCK_DIR/sacfuse.yaml --out OUT_DIR/colmap --threads THREADS
 # and prints a Markdown table (also written to OUT_DIR/compare.md). Columns:
 #   wall s, peak RSS MiB  the fusion itself: sacfuse from run_report.json (reading the workspace to fused.las
 #                         written; scoring comes after), COLMAP the stereo_fusion child process (reading the
@@ -50,10 +49,6 @@ mkdir -p "$OUT"
 OUT=$(cd "$OUT" && pwd)
 rm -rf "$OUT/sacfuse" "$OUT/colmap"
 
-# The block's config with every relative path made absolute and the output moved to OUT/sacfuse.
-"$(dirname "$0")/config_with_output.sh" "$CONFIG" "$OUT/sacfuse" > "$OUT/sacfuse.yaml" ||
-  { echo "$0: cannot rewrite $CONFIG for OUT_DIR (see above)" >&2; exit 2; }
-
 NPROC=$(nproc)
 echo "block $BLOCK, $THREADS threads ($NPROC cores), outputs in $OUT"
 echo "sacfuse: $("$SACFUSE" version)   COLMAP: $("$COLMAP" -h 2>&1 | sed -n '/./{p;q}')"
@@ -62,12 +57,12 @@ tail_log() { echo "--- last lines of $1:" >&2; tail -n 20 "$1" >&2; }
 
 LOAD_BEFORE=$(cut -d' ' -f1-3 /proc/loadavg)
 echo "[1/2] sacfuse run ..."
-if ! /usr/bin/time -v -o "$OUT/sacfuse_run.time" "$SACFUSE" run "$OUT/sacfuse.yaml" --threads "$THREADS" \
+if ! /usr/bin/time -v -o "$OUT/sacfuse_run.time" "$SACFUSE" run "$CONFIG" --output-dir "$OUT/sacfuse" --threads "$THREADS" \
     > "$OUT/sacfuse_run.log" 2>&1; then
   tail_log "$OUT/sacfuse_run.log"; echo "$0: sacfuse run failed" >&2; exit 1
 fi
 echo "[2/2] sacfuse colmap-fusion ..."
-if ! /usr/bin/time -v -o "$OUT/colmap_fusion.time" "$SACFUSE" colmap-fusion "$OUT/sacfuse.yaml" --out "$OUT/colmap" \
+if ! /usr/bin/time -v -o "$OUT/colmap_fusion.time" "$SACFUSE" colmap-fusion "$CONFIG" --out "$OUT/colmap" \
     --threads "$THREADS" --colmap "$COLMAP" ${COLMAP_ARGS:-} > "$OUT/colmap_fusion.log" 2>&1; then
   tail_log "$OUT/colmap_fusion.log"; echo "$0: sacfuse colmap-fusion failed" >&2; exit 1
 fi

@@ -13,6 +13,7 @@
 #include "tools/bench/quality_bench_format.h"
 #include "tools/bench/quality_bench_machine.h"
 #include "tools/bench/quality_bench_row.h"
+#include "io/json_text.h"
 
 namespace sacfuse::bench {
 namespace {
@@ -154,7 +155,7 @@ BenchOutcome RunQualityBench(const QualityBenchOptions& options, const BenchEnvi
   outcome.markdown_path = (root / "bench.md").string();
   outcome.json_path = (root / "bench.json").string();
   WriteFileAtomically(outcome.markdown_path, FormatBenchMarkdown(doc));
-  WriteFileAtomically(outcome.json_path, BenchToJson(doc).dump(2) + "\n");
+  WriteFileAtomically(outcome.json_path, JsonText(BenchToJson(doc), 2) + "\n");
   return outcome;
 }
 

@@ -11,6 +11,7 @@
 #include "io/atomic_file.h"
 #include "tools/bench/child_process.h"
 #include "tools/bench/quality_bench_config.h"
+#include "io/json_text.h"
 
 namespace sacfuse::bench {
 namespace {
@@ -113,7 +114,7 @@ void RecordRowJson(const std::string& path, const json& row, RowResult* result) 
   try {
     std::error_code ec;
     fs::create_directories(fs::path(path).parent_path(), ec);
-    WriteFileAtomically(path, row.dump(2) + "\n");
+    WriteFileAtomically(path, JsonText(row, 2) + "\n");
   } catch (const std::exception& e) {
     if (result->ok()) {
       result->status = "failed";

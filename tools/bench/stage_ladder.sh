@@ -19,7 +19,8 @@
 # points written. With COLMAP_WALL_S (COLMAP's stereo_fusion wall time on the same block, e.g. from
 # compare_colmap.sh) also each step's speed ratio to COLMAP and the budget (a fifth of COLMAP's time). The
 # first line gives the RSS of the binary doing nothing (`sacfuse version`): its libraries, the memory floor.
-# Needs /usr/bin/time (Debian: time) and python3 with PyYAML (python3-yaml; tools/install_deps.sh installs both).
+# Each step's switches are `sacfuse run --set` options (tools/bench/timed_run.sh). Needs /usr/bin/time (Debian:
+# time) and python3.
 # SACFUSE: the binary (default build/bin/sacfuse of this checkout).
 set -euo pipefail
 [[ $# -ge 1 && $# -le 2 ]] || { sed -n '2,23p' "$0" >&2; exit 2; }

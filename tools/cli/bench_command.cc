@@ -100,7 +100,7 @@ int BenchCommand(BenchArgs& args) {
     ResolveAerialBench(args.aerial_bench, &o);
     bench::BenchEnvironment env;
     env.command_line = OwnCommandLine();
-    env.sacfuse_version = VersionString();
+    env.sacfuse_version = FullVersionString();
     o.colmap_path = ResolveColmap(args.colmap, &env.colmap_note);
     std::error_code ec;
     env.sacfuse = std::filesystem::read_symlink("/proc/self/exe", ec).string();

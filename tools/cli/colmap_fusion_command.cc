@@ -16,13 +16,14 @@
 #include "tools/bench/colmap_fusion_report.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/config_args.h"
 #include "eval/eval_runner.h"
 
 namespace sacfuse::cli {
 namespace {
 
 struct ColmapFusionArgs {
-  std::string config_path;
+  ConfigArgs config;
   std::string out_dir;  // "" = <output.dir>/colmap_fusion
   std::string colmap = "colmap";
   int threads = -1;     // -1 = resources.threads
@@ -33,7 +34,7 @@ struct ColmapFusionArgs {
 int ColmapFusionCommand(const ColmapFusionArgs& args) {
   SetupLogging("info");
   return RunGuarded([&] {
-    const JobConfig config = LoadJobConfig(args.config_path);
+    const JobConfig config = args.config.Load();
     ColmapFusionRequest request;
     request.workspace = config.input.path;
     request.out_dir = args.out_dir.empty()
@@ -50,6 +51,9 @@ int ColmapFusionCommand(const ColmapFusionArgs& args) {
     request.las.version_minor = config.output.las_version == "1.2" ? 2 : 4;
     request.las.scale_m = config.output.scale_m;
     AddCrsToLasOptions(ParseProjectCrs(config.crs), &request.las);  // the job's CRS, as `sacfuse run` writes it
+    if (config.input.origin_m.size() == 3) {
+      request.origin_m = {config.input.origin_m[0], config.input.origin_m[1], config.input.origin_m[2]};
+    }
     RequireColmapBinary(request.colmap);  // before any output is written
     std::filesystem::create_directories(request.out_dir);
     SetupLogging(config.log.level, (std::filesystem::path(request.out_dir) / "sacfuse.log").string());
@@ -83,9 +87,8 @@ void AddColmapFusionCommand(CLI::App& app, int* exit_code) {
       "Run COLMAP's stereo_fusion on the workspace a sacfuse config names (in a shifted local frame, so float32 "
       "keeps millimetres), measure its wall time and peak RSS, convert fused.ply to LAS and score it as `run` "
       "does. Writes DIR/fused.las, colmap.log, eval.json, colmap_fusion.json");
-  cmd->add_option("CONFIG", args->config_path, "sacfuse YAML config (input.*, output.las_version/scale_m, "
-                                               "resources.*, evaluation.*)")
-      ->required();
+  AddConfigOptions(cmd, &args->config,
+                   "sacfuse YAML config (input.*, output.las_version/scale_m, resources.*, evaluation.*)");
   cmd->add_option("--out", args->out_dir, "Output folder (default: <output.dir>/colmap_fusion)");
   cmd->add_option("--colmap", args->colmap, "COLMAP binary: a path or a name on PATH")->capture_default_str();
   cmd->add_option("--threads", args->threads,

@@ -23,5 +23,7 @@ void AddVersionCommand(CLI::App& app, int* exit_code);
 void AddValidateCommand(CLI::App& app, int* exit_code);
 void AddBenchCommand(CLI::App& app, int* exit_code);
 void AddDsmCommand(CLI::App& app, int* exit_code);
+// `sacfuse gen-docs`: prints docs/configuration.md, docs/cli.md or the man page; it reads `app` (every command).
+void AddGenDocsCommand(CLI::App& app, int* exit_code);
 
 }  // namespace sacfuse::cli

@@ -13,18 +13,19 @@
 #include "jobs/open_input.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/config_args.h"
 
 namespace sacfuse::cli {
 namespace {
 
 struct ConvertArgs {
-  std::string config_path;
+  ConfigArgs config;
   std::string target;
   std::string out_dir;
 };
 
 int ConvertCommand(const ConvertArgs& args) {
-  JobConfig config = LoadJobConfig(args.config_path);
+  JobConfig config = args.config.Load();
   const std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "convert", config.crs);
   const std::string out_dir = std::filesystem::absolute(args.out_dir).lexically_normal().string();
   std::filesystem::create_directories(out_dir);
@@ -43,7 +44,8 @@ int ConvertCommand(const ConvertArgs& args) {
 void AddConvertCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<ConvertArgs>();
   auto* cmd = app.add_subcommand("convert", "Write the config's input block in another input format");
-  cmd->add_option("CONFIG", args->config_path, "YAML config whose input to convert")->required();
+  AddConfigOptions(cmd, &args->config, "YAML config whose input to convert", /*required=*/true,
+                   /*output_dir=*/false);  // the converted config writes into --out/out
   std::string targets;
   for (const std::string& t : ConversionTargets()) targets += (targets.empty() ? "" : ", ") + t;
   cmd->add_option("--to", args->target, "target format: " + targets + " (see jobs/convert_input.h)")->required();

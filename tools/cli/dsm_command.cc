@@ -15,11 +15,10 @@
 #include <spdlog/spdlog.h>
 
 #include "config/job_config.h"
-#include "core/crs.h"
 #include "core/error.h"
+#include "io/crs_wkt.h"
 #include "io/dsm_file.h"
 #include "io/point_cloud_file.h"
-#include "io/raster_crs.h"
 #include "io/resource_usage.h"
 #include "jobs/dsm_product.h"
 #include "tiles/memory_model.h"
@@ -65,7 +64,7 @@ int DsmCommand(const DsmArgs& a) {
   const Eigen::Vector3d shift =
       a.offset.empty() ? Eigen::Vector3d::Zero() : Eigen::Vector3d(a.offset[0], a.offset[1], a.offset[2]);
   PointCloudFile cloud(a.cloud, shift);
-  std::string crs_wkt = a.crs.empty() ? cloud.crs_wkt() : RasterCrsWkt(ParseProjectCrs(a.crs));
+  std::string crs_wkt = a.crs.empty() ? cloud.crs_wkt() : ProjectCrsWkt(a.crs, CrsWktDialect::kGdal);
   if (crs_wkt.empty()) spdlog::warn("{}: no CRS (give --crs); the DSM carries none", a.cloud);
   const Box2d area = a.extent.empty() ? cloud.bounds_xy() : Box2d(a.extent[0], a.extent[1], a.extent[2], a.extent[3]);
   if (area.IsEmpty()) throw InputError(a.cloud, "has no points");

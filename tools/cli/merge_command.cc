@@ -11,19 +11,20 @@
 #include "jobs/tile_queue.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/config_args.h"
 
 namespace sacfuse::cli {
 namespace {
 
-int MergeCommand(const std::string& config_path) {
-  const JobConfig config = LoadJobConfig(config_path);
+int MergeCommand(const ConfigArgs& args) {
+  const JobConfig config = args.Load();
   SetupLogging(config.log.level, LogPath(config));
   const MergeJobOutcome out = MergeJob(config);
   if (!out.missing.empty()) {
     std::cout << out.missing.size() << " tiles are not done; nothing merged. Missing:";
     for (const auto& id : out.missing) std::cout << " " << id;
-    std::cout << "\ncompute them with `sacfuse tile " << config_path << " --id ID` or `sacfuse run "
-              << config_path << "`\n";
+    std::cout << "\ncompute them with `sacfuse tile " << args.Words() << " --id ID` or `sacfuse run "
+              << args.Words() << "`\n";
     return kExitFailure;
   }
   std::cout << "fused cloud: " << out.fused_las_path << " (" << out.merged.points << " points)\n";
@@ -37,13 +38,14 @@ int MergeCommand(const std::string& config_path) {
 }  // namespace
 
 void AddMergeCommand(CLI::App& app, int* exit_code) {
-  auto config_path = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("merge", "Merge the done tiles of a tiled run into DIR/fused.laz (or .las, output.format; exit 1 listing "
-                                          "the missing tiles when some are not done)");
-  cmd->add_option("CONFIG", *config_path, "YAML config of the run")->required();
-  cmd->callback([config_path, exit_code] {
+  auto args = std::make_shared<ConfigArgs>();
+  auto* cmd = app.add_subcommand("merge", "Merge the done tiles of a tiled run into DIR/fused.laz (or .las, .copc.laz: output.format) and "
+                                          "index them in DIR/tiles.vpc (exit 1 listing the missing tiles when some "
+                                          "are not done)");
+  AddConfigOptions(cmd, args.get(), "YAML config of the run (with the run's --set and --output-dir)");
+  cmd->callback([args, exit_code] {
     SetupLogging("info");
-    *exit_code = RunGuarded([&] { return MergeCommand(*config_path); });
+    *exit_code = RunGuarded([&] { return MergeCommand(*args); });
   });
 }
 

@@ -15,20 +15,21 @@
 #include "jobs/run_state.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/config_args.h"
 
 namespace sacfuse::cli {
 namespace {
 
 struct ReportArgs {
-  std::string config_path;
+  ConfigArgs config;
   std::string out_dir;
   bool no_before = false;
 };
 
 int ReportCommand(const ReportArgs& args) {
-  const JobConfig config = LoadJobConfig(args.config_path);
+  const JobConfig config = args.config.Load();
   if (!std::filesystem::is_directory(config.output.dir)) {
-    throw InputError(config.output.dir, "no run output here (output.dir of " + args.config_path + "); run it first");
+    throw InputError(config.output.dir, "no run output here (output.dir of " + args.config.path + "); run it first");
   }
   ReportOptions options = JobReportOptions(config);  // the input opened from config.input when needed
   options.report_dir = args.out_dir;
@@ -49,7 +50,7 @@ void AddReportCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<ReportArgs>();
   auto* cmd = app.add_subcommand("report", "(Re)write the HTML report of a run: DIR/report/index.html with the "
                                            "source-view map, points per view, a cross-section, tiles and scores");
-  cmd->add_option("CONFIG", args->config_path, "YAML config of the run")->required();
+  AddConfigOptions(cmd, &args->config, "YAML config of the run (with the run's --set and --output-dir)");
   cmd->add_option("--out", args->out_dir, "Write the report into this folder instead of DIR/report");
   cmd->add_flag("--no-before", args->no_before,
                 "Skip the 'before fusion' cross-section (it reads the input's depth windows under the strip)");

@@ -10,10 +10,12 @@
 #include "config/job_config.h"
 #include "core/error.h"
 #include "config/output_layout.h"
+#include "config/version.h"
 #include "jobs/run_fusion.h"
 #include "jobs/run_state.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/config_args.h"
 
 namespace sacfuse::cli {
 namespace {
@@ -37,9 +39,9 @@ void PrintSourceViewSummary(const RunSummary& summary, std::ostream& out) {
 }
 
 struct RunArgs {
-  std::string config_path;
+  ConfigArgs config;
   bool print_defaults = false;
-  int threads = -1;
+  std::string threads;  // "" = resources.threads of the config
   std::string tiles;  // comma-separated tile ids to recompute
 };
 
@@ -65,7 +67,7 @@ int ReportFailedTiles(const RunSummary& summary, const RunArgs& args) {
     std::cout << "  tile " << id << ": " << reason << "\n";
     ids += (ids.empty() ? "" : ",") + id;
   }
-  std::cout << "rerun them with: sacfuse run " << args.config_path << " --tiles " << ids << "\n";
+  std::cout << "rerun them with: sacfuse run " << args.config.Words() << " --tiles " << ids << "\n";
   return kExitFailure;
 }
 
@@ -77,11 +79,13 @@ int RunCommand(const RunArgs& args) {
   }
   SetupLogging("info");
   return RunGuarded([&] {
-    if (args.config_path.empty()) throw ConfigError("sacfuse run: a CONFIG file is required (or --print-defaults)");
-    JobConfig config = LoadJobConfig(args.config_path);
-    if (args.threads >= 0) config.resources.threads = args.threads;
+    if (args.config.path.empty()) throw ConfigError("sacfuse run: a CONFIG file is required (or --print-defaults)");
+    ConfigArgs config_args = args.config;
+    if (!args.threads.empty()) config_args.more.push_back({"resources.threads", args.threads, false, "--threads"});
+    const JobConfig config = config_args.Load();
     SetupLogging(config.log.level, LogPath(config));
-    spdlog::info("effective configuration ({}):\n{}", args.config_path, DumpJobConfig(config, false));
+    spdlog::info("{}: effective configuration ({}):\n{}", FullVersionString(), args.config.path,
+                 DumpJobConfig(config, false));
     // DIR/run_state.json: running now; failed (with the error) or succeeded at the end (jobs/run_state.h).
     const std::optional<RunState> previous_state = MarkRunStarted(config);
     try {
@@ -124,10 +128,12 @@ int RunCommand(const RunArgs& args) {
 
 void AddRunCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<RunArgs>();
-  auto* cmd = app.add_subcommand("run", "Fuse the depth maps named by a YAML config into DIR/fused.laz (or fused.las: output.format)");
-  cmd->add_option("CONFIG", args->config_path, "YAML config (see --print-defaults)");
+  auto* cmd = app.add_subcommand("run", "Fuse the depth maps named by a YAML config into DIR/fused.laz (or fused.las, fused.copc.laz: "
+                                        "output.format)");
+  AddConfigOptions(cmd, &args->config, "YAML config (see --print-defaults)", /*required=*/false);
   cmd->add_flag("--print-defaults", args->print_defaults, "Print a complete commented config with every default");
-  cmd->add_option("--threads", args->threads, "Override resources.threads (0 = all cores)");
+  cmd->add_option("--threads", args->threads, "Set resources.threads (0 = all cores), as --set resources.threads=N")
+      ->type_name("N");
   cmd->add_option("--tiles", args->tiles,
                   "Tiled runs: recompute these tiles (comma-separated ids such as 3_4,3_5) even when done, "
                   "then merge");

@@ -12,17 +12,18 @@
 #include "jobs/tile_queue.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
+#include "tools/cli/config_args.h"
 
 namespace sacfuse::cli {
 namespace {
 
 struct TileArgs {
-  std::string config_path;
+  ConfigArgs config;
   std::string id;
 };
 
 int TileCommand(const TileArgs& args) {
-  const JobConfig config = LoadJobConfig(args.config_path);
+  const JobConfig config = args.config.Load();
   SetupLogging(config.log.level, LogPath(config));
   const TileWorkOutcome out = RunOneTile(config, args.id);
   switch (out.result) {
@@ -48,7 +49,7 @@ void AddTileCommand(CLI::App& app, int* exit_code) {
   auto args = std::make_shared<TileArgs>();
   auto* cmd = app.add_subcommand("tile", "Compute one tile of a tiled run (skipped when done or claimed by another "
                                          "live worker); for parallel / multi-machine runs");
-  cmd->add_option("CONFIG", args->config_path, "YAML config of the run")->required();
+  AddConfigOptions(cmd, &args->config, "YAML config of the run (with the run's --set and --output-dir)");
   cmd->add_option("--id", args->id, "Tile id such as 3_4 (see sacfuse plan CONFIG --list)")->required();
   cmd->callback([args, exit_code] {
     SetupLogging("info");

@@ -8,9 +8,9 @@
 namespace sacfuse::cli {
 
 void AddVersionCommand(CLI::App& app, int* exit_code) {
-  auto* cmd = app.add_subcommand("version", "Print the sacfuse version");
+  auto* cmd = app.add_subcommand("version", "Print the sacfuse version (as sacfuse --version)");
   cmd->callback([exit_code] {
-    std::cout << VersionString() << "\n";
+    std::cout << FullVersionString() << "\n";
     *exit_code = 0;
   });
 }

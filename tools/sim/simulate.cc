@@ -28,6 +28,7 @@
 #include "tools/sim/sim_workspace.h"
 #include "tools/sim/sparse_points.h"
 #include "tools/sim/visibility.h"
+#include "io/json_text.h"
 
 namespace sacfuse {
 namespace sim {
@@ -312,7 +313,7 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
       {"consistency_graphs", consistency},
       {"views", views},
   };
-  WriteFileAtomically(summary.metadata_json, meta.dump(1) + "\n");
+  WriteFileAtomically(summary.metadata_json, JsonText(meta, 1) + "\n");
   report("done", 1, 1);
   return summary;
 }

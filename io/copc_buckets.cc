@@ -1,0 +1,140 @@
+#include "io/copc_buckets.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include "core/error.h"
+#include "io/las_format.h"
+#include "io/unique_file.h"
+
+namespace sacfuse::copc {
+namespace lf = las_format;
+namespace {
+
+constexpr size_t kReadRecords = size_t{1} << 16;
+
+using File = UniqueFile;
+
+File Open(const std::string& path, const char* mode) {
+  File f(std::fopen(path.c_str(), mode));
+  if (!f) throw Error(path + ": cannot open (" + std::string(std::strerror(errno)) + ")");
+  return f;
+}
+
+void ReadAt(FILE* f, uint64_t offset, uint8_t* out, size_t bytes, const std::string& path) {
+  if (fseeko(f, static_cast<off_t>(offset), SEEK_SET) != 0 || std::fread(out, 1, bytes, f) != bytes) {
+    throw Error(path + ": cannot read " + std::to_string(bytes) + " bytes at " + std::to_string(offset));
+  }
+}
+
+// Levels to descend so that a node of `points` points splits into nodes of about max_points / 3 (2.5D: 4 per
+// level): ceil(log4(3 points / max_points)), at least 1.
+int LevelsFor(uint64_t points, uint64_t max_points) {
+  int levels = 1;
+  while (levels < 10 && (uint64_t{1} << (2 * levels)) * max_points < 3 * points) ++levels;
+  return levels;
+}
+
+// Appends records to the bucket file of their node at one level.
+class Distributor {
+ public:
+  Distributor(const Cube& cube, int level, size_t record_length, size_t buffer_bytes, const std::string& dir)
+      : cube_(cube), level_(level), record_length_(record_length), buffer_bytes_(buffer_bytes), dir_(dir) {}
+
+  void Add(const uint8_t* record) {
+    const int32_t stored[3] = {lf::GetI32(record), lf::GetI32(record + 4), lf::GetI32(record + 8)};
+    std::vector<uint8_t>& buffer = buffers_[cube_.KeyOf(stored, level_)];
+    buffer.insert(buffer.end(), record, record + record_length_);
+    buffered_ += record_length_;
+    if (buffered_ >= buffer_bytes_) Flush();
+  }
+
+  std::vector<Bucket> Finish() {
+    Flush();
+    std::vector<Bucket> buckets;
+    for (const auto& [key, points] : points_) buckets.push_back({key, PathOf(key), 0, points});
+    return buckets;
+  }
+
+ private:
+  std::string PathOf(const VoxelKey& key) const {
+    return (std::filesystem::path(dir_) / (key.ToString() + ".pts")).string();
+  }
+
+  void Flush() {
+    for (auto& [key, buffer] : buffers_) {
+      if (buffer.empty()) continue;
+      const std::string path = PathOf(key);
+      File f = Open(path, "ab");
+      if (std::fwrite(buffer.data(), 1, buffer.size(), f.get()) != buffer.size() || std::fflush(f.get()) != 0) {
+        throw Error(path + ": write failed (disk full?): " + std::strerror(errno));
+      }
+      points_[key] += buffer.size() / record_length_;
+      std::vector<uint8_t>().swap(buffer);  // give the memory back: the next flush may come from other nodes
+    }
+    buffered_ = 0;
+  }
+
+  const Cube& cube_;
+  const int level_;
+  const size_t record_length_;
+  const size_t buffer_bytes_;
+  const std::string dir_;
+  std::map<VoxelKey, std::vector<uint8_t>> buffers_;
+  std::map<VoxelKey, uint64_t> points_;
+  size_t buffered_ = 0;
+};
+
+// Distributes the records of `source` to the nodes of `level`.
+std::vector<Bucket> Distribute(const Bucket& source, size_t record_length, const Cube& cube, int level,
+                               size_t buffer_bytes, const std::string& dir) {
+  Distributor out(cube, level, record_length, buffer_bytes, dir);
+  File in = Open(source.path, "rb");
+  std::vector<uint8_t> block;
+  for (uint64_t done = 0; done < source.points;) {
+    const size_t n = static_cast<size_t>(std::min<uint64_t>(kReadRecords, source.points - done));
+    block.resize(n * record_length);
+    ReadAt(in.get(), source.offset + done * record_length, block.data(), block.size(), source.path);
+    for (size_t i = 0; i < n; ++i) out.Add(&block[i * record_length]);
+    done += n;
+  }
+  return out.Finish();
+}
+
+}  // namespace
+
+std::vector<Bucket> MakeBuckets(const std::string& las_path, uint64_t point_offset, uint64_t count,
+                                size_t record_length, const Cube& cube, uint64_t max_points, size_t buffer_bytes,
+                                const std::string& dir) {
+  const Bucket all{VoxelKey{}, las_path, point_offset, count};
+  if (count <= max_points || cube.max_node_level() < 1) return {all};
+  std::vector<Bucket> todo =
+      Distribute(all, record_length, cube, std::min(LevelsFor(count, max_points), cube.max_node_level()),
+                 buffer_bytes, dir);
+  std::vector<Bucket> done;
+  while (!todo.empty()) {
+    const Bucket b = todo.back();
+    todo.pop_back();
+    if (b.points <= max_points || b.key.level >= cube.max_node_level()) {
+      done.push_back(b);
+      continue;
+    }
+    const int level = std::min(b.key.level + LevelsFor(b.points, max_points), cube.max_node_level());
+    for (const Bucket& child : Distribute(b, record_length, cube, level, buffer_bytes, dir)) todo.push_back(child);
+    std::filesystem::remove(b.path);
+  }
+  return done;
+}
+
+std::vector<uint8_t> LoadBucket(const Bucket& bucket, size_t record_length) {
+  std::vector<uint8_t> records(static_cast<size_t>(bucket.points) * record_length);
+  File in = Open(bucket.path, "rb");
+  ReadAt(in.get(), bucket.offset, records.data(), records.size(), bucket.path);
+  return records;
+}
+
+}  // namespace sacfuse::copc
