@@ -154,7 +154,7 @@ double ResolveDsmCell(const JobConfig& config, const DepthBlock& input, double t
   for (const View& view : input.views()) sizes.push_back(input.DepthSize(view));
   double z_min = 0, z_max = 0;
   std::string source;
-  BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &source);
+  BlockHeightRange(input, config.tiling, &z_min, &z_max, &source);
   const double gsd = BlockDepthGsd(input, sizes, z_min, z_max);
   if (!(gsd > 0)) {
     throw ConfigError("output.dsm_cell_m = 0 (automatic): no view looks down on the block, so its GSD is unknown; "
