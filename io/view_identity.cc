@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "io/file_checksum.h"
 #include "io/input_file.h"
 
@@ -119,6 +120,23 @@ std::string DescribeViewChange(const ViewIdentity& before, const ViewIdentity& n
   if (parts & kImageInput) add(DescribeFileChange("image", before.image, now.image));
   if ((parts & kCameraInput) && before.camera_hash != now.camera_hash) add("camera changed (pose or intrinsics)");
   return out;
+}
+
+void CheckInputsUnchanged(const DepthBlock& input, const std::vector<ViewIdentity>& pinned) {
+  for (const View& view : input.views()) {
+    if (view.index >= pinned.size()) continue;
+    const ViewIdentity& before = pinned[view.index];
+    const std::string depth_path = input.DepthMapPath(view), image_path = input.ImagePath(view);
+    const auto check = [&](const char* what, const std::string& path, const FileIdentity& then) {
+      const std::string change = DescribeFileChange(what, then, IdentifyFile(path));
+      if (change.empty()) return;
+      throw InputError(path, change + " during this run (" + ViewLabel(view) + "): the fused cloud was not "
+                             "written, as it would mix the file's old and new contents; run again (the next run "
+                             "recomputes what the change affects)");
+    };
+    check("depth map", depth_path, before.depth);
+    check("image", image_path, before.image);
+  }
 }
 
 std::string ViewLabel(const View& view) { return "view " + std::to_string(view.index) + " (" + view.name + ")"; }

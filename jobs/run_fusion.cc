@@ -9,13 +9,17 @@
 #include <spdlog/spdlog.h>
 
 #include "config/output_layout.h"
+#include "config/result_settings.h"
 #include "config/version.h"
 #include "core/error.h"
 #include "eval/eval_runner.h"
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
+#include "io/input_warnings.h"
+#include "io/json_text.h"
 #include "io/point_cloud_writer.h"
 #include "io/resource_usage.h"
+#include "io/test_pause.h"
 #include "io/view_identity.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/block_view_source.h"
@@ -26,6 +30,7 @@
 #include "jobs/las_options.h"
 #include "jobs/method_geometry.h"
 #include "jobs/open_input.h"
+#include "jobs/output_lock.h"
 #include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
@@ -123,7 +128,9 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                    {"tiles_skipped", s.tiles_skipped}, {"failed_tiles", failed}};
   }
   j["fusion"] = FusionStatsJson(s.fusion, s.tiles_run > 0);
-  WriteFileAtomically(s.report_path, j.dump(2) + "\n");
+  // Warnings about the input, among them every default that replaced missing input data (io/input_warnings.h).
+  j["warnings"] = InputWarningsGiven();
+  WriteFileAtomically(s.report_path, JsonText(j, 2) + "\n");
 }
 
 void CheckRerunTiles(const std::vector<std::string>& rerun_tiles, const TilePlan* plan) {
@@ -154,18 +161,20 @@ void SetFusionSummary(const FusionStats& stats, RunSummary* summary) {
 
 // Tiled (any method): per-tile files, resume, merge (jobs/tiled_run.h).
 void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
-              const std::vector<std::string>& rerun_tiles, size_t views_in_flight, RunSummary* summary) {
+              const std::vector<std::string>& rerun_tiles, size_t views_in_flight,
+              const std::vector<ViewIdentity>& pinned, OutputWriterLock& lock, RunSummary* summary) {
   const BlockIdentity identity = IdentifyBlock(input);
   spdlog::info("input identities of {} views: {:.2f} MiB read and hashed in {:.3f} s ({:.0f} MiB/s)",
                identity.views.size(), static_cast<double>(identity.bytes_hashed) / (1 << 20), identity.seconds,
                identity.seconds > 0 ? static_cast<double>(identity.bytes_hashed) / (1 << 20) / identity.seconds : 0.0);
+  lock.Record(ResultSettingsHash(config), IdentitiesDigest(identity.views));  // `sacfuse tile` workers compare
   const TilePlan plan = SharedTilePlan(config, input, identity.views);
   CheckRerunTiles(rerun_tiles, &plan);
   spdlog::info("tiled {}: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
                NameOf(config.fusion.method), plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
-  const TiledRunOutcome tiled =
-      RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path, progress, views_in_flight);
+  const TiledRunOutcome tiled = RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path,
+                                            progress, views_in_flight, &pinned);
   SetFusionSummary(tiled.stats, summary);
   summary->superpixels_computed = tiled.superpixels_computed;
   summary->superpixel_seconds = tiled.superpixel_seconds;
@@ -187,7 +196,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
 // Untiled: the whole block through the same FuseViews as every tile, into one cloud writer. The fusion's memory
 // is released before the writer is closed (a COPC is built out of core in Close, within the budget).
 void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
-                size_t views_in_flight, RunSummary* summary) {
+                size_t views_in_flight, const std::vector<ViewIdentity>& pinned, RunSummary* summary) {
   const auto& views = input.views();
   const std::unique_ptr<PointCloudWriter> writer = OpenPointCloudWriter(summary->las_path, FusedCloudOptions(config));
   FusedViews fused;
@@ -202,7 +211,7 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
       for (const View& view : views) sizes.push_back(input.DepthSize(view));
       double z_min = 0, z_max = 0;
       std::string z_source;
-      BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &z_source);
+      BlockHeightRange(input, config.tiling, &z_min, &z_max, &z_source);
       geometry = BlockMethodGeometry(input, sizes, z_min, z_max, NeighborOptionsOf(config.fusion.sac));
       spdlog::info("{}: block GSD {:.3f} m from the geometry (heights [{:.1f}, {:.1f}] m from {})",
                    NameOf(config.fusion.method), geometry.gsd_m, z_min, z_max, z_source);
@@ -217,6 +226,8 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
                                          views.size() - fused.superpixels_computed, cache_dir)
                            : std::string());
   SetFusionSummary(fused.stats, summary);
+  CheckInputsUnchanged(input, pinned);
+  PauseAtTestPoint("run:before_commit");
   writer->Close();
   summary->output_points = writer->num_points();
   for (size_t i = 0; i < views.size(); ++i) {
@@ -244,14 +255,15 @@ void ScoreAndReport(const JobConfig& config, RunSummary* summary) {
 
 }  // namespace
 
-RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
+RunSummary RunFusionJob(const JobConfig& given, OutputWriterLock& lock, const RunProgress& progress,
                         const std::vector<std::string>& rerun_tiles) {
   ValidateJobConfig(given);
   JobConfig config = given;
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = ProcessCpuSeconds();
   std::filesystem::create_directories(config.output.dir);
-  RemoveTemporaryFilesOfKilledRuns(config);
+  RemoveTemporaryFilesOfGoneProcesses(config, &lock);
+  PauseAtTestPoint("run:started");
 
   RunSummary summary;
   summary.method = NameOf(config.fusion.method);
@@ -261,6 +273,8 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
   std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse", config.crs);
+  // The views' files as this run first sees them: checked again before the cloud is written (inputs pinned).
+  const std::vector<ViewIdentity> pinned = IdentifyBlock(*block).views;
   TilingDecision decision;
   config = ResolveTiling(given, *block, &decision);
   const ThreadLimit thread_limit(EffectiveThreads(config));
@@ -290,15 +304,17 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
     spdlog::info("fusion method: {} (comparison method; no superpixels)", NameOf(config.fusion.method));
   }
   if (tiled) {
-    RunTiled(config, input, progress, rerun_tiles, decision.views_in_flight, &summary);
+    RunTiled(config, input, progress, rerun_tiles, decision.views_in_flight, pinned, lock, &summary);
   } else {
-    RunUntiled(config, input, progress, decision.views_in_flight, &summary);
+    lock.Record(ResultSettingsHash(config), "");
+    RunUntiled(config, input, progress, decision.views_in_flight, pinned, &summary);
   }
 
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.cpu_seconds = ProcessCpuSeconds() - cpu_start;
   summary.peak_rss_mib = PeakRssMiB();
   if (!summary.failed_tiles.empty()) return summary;  // the previous run's outputs stay (jobs/run_state.h)
+  RemoveOtherFormatCloud(config);
   WriteRunReport(summary, config);
   ScoreAndReport(config, &summary);
   spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,

@@ -7,6 +7,7 @@
 #include "config/output_layout.h"
 #include "config/result_settings.h"
 #include "core/error.h"
+#include "io/test_pause.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/cluster_table_cache.h"
 #include "jobs/fusion_methods.h"
@@ -46,7 +47,8 @@ void MakeViewCaches(const JobConfig& config, const DepthBlock& input, const Tile
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, const std::string& fused_las_path,
-                            const StageProgress& progress, size_t views_in_flight) {
+                            const StageProgress& progress, size_t views_in_flight,
+                            const std::vector<ViewIdentity>* pinned) {
   const FusionNeeds needs = MakeFusionMethod(config.fusion)->needs();
   if (needs.consistency_graphs) {
     throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
@@ -73,8 +75,11 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   out.tiles_seconds = tiles.seconds;
   if (!out.failed.empty()) return out;
 
+  PauseAtTestPoint("run:before_merge");
+  if (pinned != nullptr) CheckInputsUnchanged(input, *pinned);
   const auto merge_start = std::chrono::steady_clock::now();
-  const MergeResult merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), fused_las_path, progress);
+  const MergeResult merged =
+      MergeTiledRun(config, input, plan, identities, FusedCloudOptions(config, plan), fused_las_path, progress);
   out.merge_seconds = SecondsSince(merge_start);
   out.merged = true;
   out.merged_points = merged.points;
