@@ -226,8 +226,8 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
                                          views.size() - fused.superpixels_computed, cache_dir)
                            : std::string());
   SetFusionSummary(fused.stats, summary);
-  CheckInputsUnchanged(input, pinned);
   PauseAtTestPoint("run:before_commit");
+  CheckInputsUnchanged(input, pinned);  // inputs pinned: the last step before the cloud is finished and renamed
   writer->Close();
   summary->output_points = writer->num_points();
   for (size_t i = 0; i < views.size(); ++i) {

@@ -4,13 +4,18 @@
 //  - while a run writes the folder: a second run (another config, and the same config), a merge and a `tile`
 //    worker of another config are refused; a worker of the same config is served; `run --wait` waits and then
 //    finds every tile done; the cloud equals a fresh run's;
-//  - while a merge writes: a run is refused; a tile marker rewritten during the merge fails it (nothing written);
+//  - while a merge writes: a run is refused; a worker's start-up clean-up leaves the merge's temporary cloud; a
+//    tile marker rewritten during the merge fails it (nothing written);
+//  - a writer killed with SIGKILL: `status` says it was interrupted; the next run starts at once, removes its
+//    temporary files and gives a fresh run's cloud;
 //  - two `tile` workers on one tile: the second leaves it to the first (named), which computes it;
 //  - tiles of another config (a worker without any writer in the folder) are never merged: `merge` refuses naming
 //    the tile, `status` says the cloud is not the merge of the present tiles, the next run recomputes that tile;
-//  - an input edited during a run fails it before the merge, naming the file (no mixed cloud);
+//  - an input edited during a run fails it before the merge (tiled) or the rename (untiled), naming the file;
 //  - paths with bytes that are not UTF-8, an output.format switch (the other format's cloud removed, `status`
 //    names the right file), a COLMAP model without sparse points (heights from the depth maps, with a warning).
+#include <signal.h>
+
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -21,6 +26,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "io/process_identity.h"
 #include "tests/support/block_suite.h"
 
 namespace sacfuse {
@@ -98,6 +104,8 @@ TEST_F(OneWriterEndToEndTest, WhileARunWritesTheFolderOtherWritersAndForeignWork
   std::string out;
   EXPECT_EQ(Run("run " + ShellQuote(b), &out), 1) << out;
   EXPECT_TRUE(Has(out, holder) && Has(out, "is writing this output folder; one output folder has one writer")) << out;
+  EXPECT_EQ(Run("run " + ShellQuote(a), &out), 1) << out;  // the same config too (its clean-up was defect 2)
+  EXPECT_TRUE(Has(out, holder)) << out;
   EXPECT_EQ(Run("merge " + ShellQuote(a), &out), 1) << out;
   EXPECT_TRUE(Has(out, holder)) << out;
   // The refused ones left the run's state alone.
@@ -125,6 +133,12 @@ TEST_F(OneWriterEndToEndTest, WhileARunWritesTheFolderOtherWritersAndForeignWork
   ASSERT_TRUE(WaitForFile(merge_pause)) << "the merge did not reach its commit";
   EXPECT_EQ(Run("run " + ShellQuote(a), &out), 1) << out;
   EXPECT_TRUE(Has(out, "`sacfuse merge` (pid " + Pid(merge_pause) + " on host ")) << out;
+  // The merge's half-written cloud is a temporary file of a live process: a worker starting now (its start-up
+  // clean-up runs) leaves it alone.
+  const std::string merge_temp = "fused.laz.tmp-" + ThisHostName() + "-" + Pid(merge_pause) + "-";
+  ASSERT_EQ(testing::CountFilesNamedWith(Out("race"), merge_temp), 1u);
+  EXPECT_EQ(Run("tile " + ShellQuote(a) + " --id 2_2", &out), 0) << out;
+  EXPECT_EQ(testing::CountFilesNamedWith(Out("race"), merge_temp), 1u) << out;
   const fs::path marker = Out("race") / "tiles" / "2_2.done.json";
   nlohmann::json m = ReadJsonFile(marker);
   m["finished_unix_ns"] = m.at("finished_unix_ns").get<int64_t>() + 1;
@@ -135,6 +149,31 @@ TEST_F(OneWriterEndToEndTest, WhileARunWritesTheFolderOtherWritersAndForeignWork
   EXPECT_TRUE(Has(out, "tile 2_2 was rewritten by another process during the merge")) << out;
   EXPECT_TRUE(ReadFileBytes(Out("race") / "fused.laz") == before);
   EXPECT_EQ(testing::CountFilesNamedWith(Out("race"), ".tmp-"), 0u);
+}
+
+// kill -9 of a run that holds the folder: the kernel releases the lock, `status` says the run was interrupted, and
+// the next run starts at once, removes the killed run's temporary files and gives a fresh run's cloud.
+TEST_F(OneWriterEndToEndTest, KilledWriterLeavesTheFolderToTheNextRun) {
+  const fs::path a = WriteConfig("killed", "killed");
+  CopyFreshOutput("killed");
+  const fs::path pause = Dir() / "pause_killed";
+  BackgroundCommand run(Sacfuse("run " + ShellQuote(a)), PauseAt("run:started", pause));
+  ASSERT_TRUE(WaitForFile(pause));
+  const std::string pid = Pid(pause);
+  const fs::path left = Out("killed") / ("fused.laz.tmp-" + ThisHostName() + "-" + pid + "-0");
+  std::ofstream(left) << "half-written by the killed run";
+  ASSERT_EQ(::kill(static_cast<pid_t>(std::stoll(pid)), SIGKILL), 0);
+  std::string out;
+  run.Wait(&out);
+  fs::remove(pause);
+  EXPECT_EQ(ReadJsonFile(Out("killed") / "run_state.json").at("status"), "running");
+  EXPECT_EQ(Run("status " + ShellQuote(a), &out), 1) << out;
+  EXPECT_TRUE(Has(out, "last run (pid " + pid + ", started ") && Has(out, ") was INTERRUPTED: its process is gone"))
+      << out;
+  ASSERT_EQ(Run("run " + ShellQuote(a), &out), 0) << out;
+  EXPECT_TRUE(Has(out, "removed " + left.string() + " (left by a process that is gone)")) << out;
+  EXPECT_FALSE(fs::exists(left));
+  ExpectFreshCloudA("killed");
 }
 
 // Two `tile` workers on one tile: the second leaves it to the first, naming it; the first computes it; the merge
@@ -206,6 +245,29 @@ TEST_F(OneWriterEndToEndTest, InputEditedDuringARunFailsItNamingTheFile) {
   EXPECT_EQ(ReadJsonFile(Out("edited") / "run_state.json").at("status"), "failed");
   EXPECT_EQ(Run("status " + ShellQuote(a), &out), 1) << out;
   EXPECT_TRUE(Has(out, "last run FAILED at ") && Has(out, "depth map changed")) << out;
+}
+
+// Defect 5 without tiles: the whole fusion is the window. The untiled run checks its inputs again before the cloud
+// is renamed into place; an edited depth map fails it, naming the file, and no cloud is written.
+TEST_F(OneWriterEndToEndTest, InputEditedDuringAnUntiledRunFailsItNamingTheFile) {
+  const fs::path block = Dir() / "block_edited_untiled";
+  ASSERT_EQ(RunCommand("cp -a " + ShellQuote(Block()) + " " + ShellQuote(block)), 0);
+  std::ofstream(Config("untiled")) << "input: {path: " << block.string() << "}\noutput: {dir: "
+                                   << Out("untiled").string() << "}\ncoregistration: {enabled: false}\n";
+  const fs::path depth = block / "stereo/depth_maps/nadir/0010.jpg.geometric.bin";
+  const fs::path pause = Dir() / "pause_untiled";
+  BackgroundCommand run(Sacfuse("run " + ShellQuote(Config("untiled"))), PauseAt("run:before_commit", pause));
+  ASSERT_TRUE(WaitForFile(pause));
+  std::string bytes = ReadFileBytes(depth);
+  bytes[bytes.size() - 1] ^= 0x01;
+  std::ofstream(depth, std::ios::binary | std::ios::trunc) << bytes;
+  fs::remove(pause);
+  std::string out;
+  EXPECT_EQ(run.Wait(&out), 1) << out;
+  EXPECT_TRUE(Has(out, depth.string() + ": depth map changed (size ")) << out;
+  EXPECT_TRUE(Has(out, "untiled")) << out;  // it was the untiled path
+  EXPECT_FALSE(fs::exists(Out("untiled") / "fused.laz"));
+  EXPECT_EQ(testing::CountFilesNamedWith(Out("untiled"), ".tmp-"), 0u);
 }
 
 // Defects 4, 7 and 8 (status): an output folder whose path holds a byte that is not UTF-8 works end to end (the
