@@ -93,22 +93,13 @@ TEST(OutputLockTest, WorkerOfAnotherJobIsRefusedWhileAWriterHoldsTheFolder) {
   EXPECT_TRUE(Has(inputs, "with other inputs (inputs digest digest-a, this worker's digest-b")) << inputs;
 }
 
-// The pid of a child that has exited (and was reaped).
-int64_t GonePid() {
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
-}
-
 TEST(OutputLockTest, CleanupRemovesOnlyFilesWhoseWriterIsProvablyGone) {
   TempDir dir;
   const JobConfig config = ConfigIn(dir);
   fs::create_directories(TilesDir(config));
   const std::string live = TemporaryPathFor(FusedLasPath(config));  // this process: alive
   const std::string host = TemporaryFileOwnerOf(fs::path(live).filename().string())->host;
-  const std::string gone = TilesDir(config) + "/3_4.laz.tmp-" + host + "-" + std::to_string(GonePid()) + "-0";
+  const std::string gone = TilesDir(config) + "/3_4.laz.tmp-" + host + "-" + std::to_string(testing::GonePid()) + "-0";
   const std::string far = TilesDir(config) + "/3_5.laz.tmp-another-host-77-0";
   const std::string older = config.output.dir + "/run_report.json.tmp-999999-3";
   for (const std::string& p : {live, gone, far, older}) std::ofstream(p) << "half-written";
