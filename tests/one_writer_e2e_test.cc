@@ -301,7 +301,7 @@ TEST_F(OneWriterEndToEndTest, NonUtf8PathsAndFormatSwitch) {
 
 // Defect 3: with an empty points3D.bin the plan fell back to the config's z range [0, 100] m (the scene spans
 // 99-134 m): many more tiles, an incomplete cloud, no warning. The heights now come from the depth maps, with a
-// warning, and the plan has the tiles of the sparse model's.
+// warning in the log, run_report.json and the HTML report, and the plan has the tiles of the sparse model's.
 TEST_F(OneWriterEndToEndTest, ModelWithoutSparsePointsTakesHeightsFromTheDepthMaps) {
   const fs::path block = Dir() / "block_nopoints";
   fs::copy(Block(), block, fs::copy_options::recursive);
@@ -315,9 +315,14 @@ TEST_F(OneWriterEndToEndTest, ModelWithoutSparsePointsTakesHeightsFromTheDepthMa
   }
   std::string sparse, nopoints;
   ASSERT_EQ(Run("plan --list " + ShellQuote(Config("sparse")), &sparse), 0) << sparse;
-  ASSERT_EQ(Run("plan " + ShellQuote(Config("nopoints")), &nopoints), 0) << nopoints;
-  EXPECT_TRUE(Has(nopoints, "points3D.bin: the sparse model has no points; the block's height range is taken from "))
-      << nopoints;
+  ASSERT_EQ(Run("run " + ShellQuote(Config("nopoints")), &nopoints), 0) << nopoints;
+  const std::string warning = "points3D.bin: the sparse model has no points; the block's height range is taken from ";
+  EXPECT_TRUE(Has(nopoints, warning)) << nopoints;
+  // The warning is in the run's report too, and at the top of the HTML report.
+  const nlohmann::json warnings = ReadJsonFile(Out("plan_nopoints") / "run_report.json").at("warnings");
+  ASSERT_EQ(warnings.size(), 1u) << warnings;
+  EXPECT_TRUE(Has(warnings[0].get<std::string>(), warning)) << warnings;
+  EXPECT_TRUE(Has(ReadFileBytes(Out("plan_nopoints") / "report/index.html"), "<b>Input:</b> ")) << "no input warning";
   const nlohmann::json a = ReadJsonFile(Out("plan_sparse") / "plan.json");
   const nlohmann::json b = ReadJsonFile(Out("plan_nopoints") / "plan.json");
   EXPECT_EQ(b.at("z_source"), "depth-map sample (the sparse model has no points)");
