@@ -14,6 +14,7 @@
 #include "jobs/coregistered_block.h"
 #include "jobs/output_lock.h"
 #include "io/las_writer.h"
+#include "io/stage_clock.h"
 
 namespace sacfuse {
 
@@ -49,6 +50,14 @@ struct RunSummary {
   double superpixel_seconds = 0.0;  // the superpixel (and colour cache) pass; untiled: all loading
   double tiles_seconds = 0.0;       // tiled: the tile stage
   double merge_seconds = 0.0;       // tiled: merging the tiles into fused.las
+  double write_seconds = 0.0;       // untiled: wall time inside the LAS/LAZ writer during the fusion stage
+  // Every stage of the job in the order it ran, with wall and CPU seconds (io/stage_clock.h): opening the input,
+  // the tiling decision, co-registration, then untiled "load + superpixels", "fusion", "write fused cloud", or
+  // tiled "tile plan", "superpixels", "tiles", "merge"; then "run report", "scoring" (evaluation.reference set) and
+  // "HTML report". wall_seconds / cpu_seconds above end with the fused cloud; total_* include every stage.
+  std::vector<StageTime> stages;
+  double total_wall_seconds = 0.0;
+  double total_cpu_seconds = 0.0;
   std::string eval_text;            // evaluation.reference set: the score table and F1 lines (eval/eval_runner.h)
 };
 

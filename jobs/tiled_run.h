@@ -19,6 +19,7 @@
 #include "core/fusion_stats.h"
 #include "io/depth_block.h"
 #include "io/las_writer.h"
+#include "io/stage_clock.h"
 #include "io/view_identity.h"
 #include "tiles/tile_plan.h"
 #include "tiles/tile_scheduler.h"
@@ -50,10 +51,11 @@ struct TiledRunOutcome {
 // `views_in_flight`: views the superpixel pass prepares at once (TilingDecision::views_in_flight). `pinned` (may be
 // null): the views' files when the run started; one that changed since fails the run before the merge (InputError
 // naming it, io/view_identity.h CheckInputsUnchanged).
+// `clock` (optional): marks the stages "tile plan" (stage 1), "superpixels", "tiles" and "merge" as they end.
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, const std::string& fused_las_path,
                             const StageProgress& progress = {}, size_t views_in_flight = 1,
-                            const std::vector<ViewIdentity>* pinned = nullptr);
+                            const std::vector<ViewIdentity>* pinned = nullptr, StageClock* clock = nullptr);
 
 }  // namespace sacfuse
