@@ -247,6 +247,7 @@ LasReader::LasReader(const std::string& path) : impl_(std::make_unique<Impl>()) 
 }
 
 LasReader::~LasReader() {
+  impl_->laz.reset();  // first: its read-ahead may still be reading the file
   if (impl_->file != nullptr) std::fclose(impl_->file);
 }
 

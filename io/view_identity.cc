@@ -5,8 +5,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <exception>
 
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "io/file_checksum.h"
@@ -95,9 +97,23 @@ ViewIdentity IdentifyView(const DepthBlock& input, const View& view) {
 BlockIdentity IdentifyBlock(const DepthBlock& input) {
   const auto start = std::chrono::steady_clock::now();
   BlockIdentity block;
-  for (const View& view : input.views()) {
-    block.views.push_back(IdentifyView(input, view));
-    for (const FileIdentity* f : {&block.views.back().depth, &block.views.back().image}) {
+  const std::vector<View>& views = input.views();
+  block.views.resize(views.size());
+  // Views in parallel (each reads its files' edges): a serial share of co-registration and of the tiled plan. An
+  // unreadable file throws as a serial loop would: the first view's error.
+  std::vector<std::exception_ptr> errors(views.size());
+  tbb::parallel_for(size_t{0}, views.size(), [&](size_t i) {
+    try {
+      block.views[i] = IdentifyView(input, views[i]);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  for (const ViewIdentity& id : block.views) {
+    for (const FileIdentity* f : {&id.depth, &id.image}) {
       if (f->exists) block.bytes_hashed += std::min<uint64_t>(f->size, 2 * kIdentityEdgeBytes);
     }
   }
