@@ -13,6 +13,9 @@ struct StageTime {
   std::string name;
   double wall_s = 0.0;
   double cpu_s = 0.0;
+  double peak_rss_mib = 0.0;  // the process's peak RSS so far, at the stage's end (it rose in this stage when
+                              // it exceeds the previous stage's)
+  double rss_mib = 0.0;       // the process's RSS at the stage's end
 };
 
 class StageClock {
@@ -33,7 +36,7 @@ class StageClock {
   std::vector<StageTime> stages_;
 };
 
-// "stage  wall s  CPU s  CPU/wall" lines, one per stage and a total, for the log.
+// "stage  wall s  CPU s  CPU/wall  peak RSS MiB" lines, one per stage and a total, for the log.
 std::string FormatStageTable(const std::vector<StageTime>& stages, double total_wall_s, double total_cpu_s);
 
 }  // namespace sacfuse

@@ -92,7 +92,10 @@ nlohmann::json SacSectionJson(const FusionStats& f, size_t superpixels_computed)
 // Every stage so far, in order, with the whole job's time (io/stage_clock.h).
 nlohmann::json StagesJson(const RunSummary& s) {
   nlohmann::json list = nlohmann::json::array();
-  for (const StageTime& t : s.stages) list.push_back({{"name", t.name}, {"wall_s", t.wall_s}, {"cpu_s", t.cpu_s}});
+  for (const StageTime& t : s.stages) {
+    list.push_back({{"name", t.name}, {"wall_s", t.wall_s}, {"cpu_s", t.cpu_s}, {"peak_rss_mib", t.peak_rss_mib},
+                    {"rss_mib", t.rss_mib}});
+  }
   nlohmann::json j = {{"threads", s.threads}, {"list", list}, {"total_wall_s", s.total_wall_seconds},
                       {"total_cpu_s", s.total_cpu_seconds}};
   if (s.tiles_run == 0) j["fusion_writer_wall_s"] = s.write_seconds;  // untiled: part of the "fusion" stage
