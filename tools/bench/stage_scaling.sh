@@ -20,7 +20,9 @@
 # number of free cores could speed the stage up with that thread count's split of the work; 1.00 = serial), and
 # "bound" = the first thread count's CPU seconds / the busiest thread's CPU seconds (the stage's speed-up over the
 # first thread count on an otherwise idle machine if the threads never wait for each other; an upper bound).
-# Stages are placed on the samples' timeline from their wall times, aligned at the last sample.
+# Stages are placed on the samples' timeline from their wall times, aligned at the last sample. With perf it also
+# prints, per stage, the serial CPU seconds inferred from the largest thread count's split and the speed-up that
+# Amdahl's law then gives on 4 ... 64 free cores (an inference, not a measurement: uneven work counts as serial).
 #
 # Environment: SACFUSE (default build/bin/sacfuse of this checkout), STAGE_SCALING_DIR (work folder, default a
 # temporary one), COLMAP_WALL_S (COLMAP's stereo_fusion wall time on this block, measured elsewhere: prints the
@@ -29,7 +31,7 @@
 # max_reproj_error=1). Needs /usr/bin/time (Debian: time) and python3 with PyYAML (python3-yaml); the COLMAP runs
 # need colmap (tools/install_deps.sh installs all three).
 set -euo pipefail
-[[ $# -ge 1 ]] || { sed -n '2,30p' "$0" >&2; exit 2; }
+[[ $# -ge 1 ]] || { sed -n '2,33p' "$0" >&2; exit 2; }
 config=$(realpath "$1")
 shift
 threads=("$@")
@@ -182,6 +184,28 @@ for label, wall, cpu in rows:
             else:
                 line += f" {1 / share:.2f} | {c0 / (share * c):.2f}x |"
     print(line)
+if with_perf and threads[-1] > 1:
+    # Amdahl from the largest thread count's split: its busiest thread ran B = S + P / T of the stage's CPU
+    # C = S + P, so the serial part is S = (T B - C) / (T - 1) (uneven work counts as serial: an upper bound), and
+    # on N free cores the stage would take S + P / N, against the first thread count's CPU seconds.
+    top = threads[-1]
+    counts = [n for n in (4, 8, 16, 32, 64) if n > top]
+    print(f"\nInferred from the {top}-thread split (Amdahl: serial part S = (T B - C) / (T - 1), wall on N free "
+          f"cores S + (C - S) / N), speed-up over {base} thread{'s' if base > 1 else ''}:\n")
+    print("| stage | CPU s | serial s |" + "".join(f" {n} cores |" for n in counts))
+    print("|---|---|---|" + "---|" * len(counts))
+    total_c0 = total_s = total_c = 0.0
+    for name in names:
+        share, c, c0 = busiest_share(top, name), stage(top, name, "cpu_s"), stage(base, name, "cpu_s")
+        if share is None or c is None or c0 is None or c0 < min_stage_s:
+            continue
+        serial = max(0.0, (top * share * c - c) / (top - 1))
+        total_c0, total_s, total_c = total_c0 + c0, total_s + serial, total_c + c
+        print(f"| {name} | {c:.2f} | {serial:.2f} |" + "".join(f" {c0 / (serial + (c - serial) / n):.2f}x |"
+                                                          for n in counts))
+    if total_c > 0:
+        print(f"| **these stages** | {total_c:.2f} | {total_s:.2f} |"
+              + "".join(f" {total_c0 / (total_s + (total_c - total_s) / n):.2f}x |" for n in counts))
 rss = {t: median([rss_kb / 1024 for _, rss_kb, *_ in by_threads[t]]) for t in threads}
 print("\npeak RSS MiB (whole process" + (", perf's included" if with_perf else "") + "): " + ", ".join(f"{t} threads {rss[t]:.0f}" for t in threads))
 print("load average before each run: " + "; ".join(f"{t} threads {', '.join(l for _, _, l, *_ in by_threads[t])}"
