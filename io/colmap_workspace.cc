@@ -169,6 +169,7 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
   const std::string cameras_file = SparseFile(dir, "cameras");
   views_.reserve(order.size());
   model_index_to_view_.assign(model_.images.size(), UINT32_MAX);
+  order = WithDepthMaps(order);
   for (const size_t i : order) {
     model_index_to_view_[i] = static_cast<uint32_t>(views_.size());
     const ColmapImage& img = model_.images[i];
@@ -183,6 +184,48 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
     CheckViewPose(view.cam_from_world, images_file, who);
     views_.push_back(std::move(view));
   }
+}
+
+std::vector<size_t> ColmapWorkspace::WithDepthMaps(const std::vector<size_t>& order) const {
+  auto depth_path = [&](size_t i, ColmapDepthType type) {
+    return JoinPath(dir_, "stereo/depth_maps/" + model_.images[i].name + TypeSuffix(type));
+  };
+  std::error_code ec;
+  std::vector<size_t> kept, missing;
+  for (const size_t i : order) (std::filesystem::exists(depth_path(i, depth_type_), ec) ? kept : missing).push_back(i);
+  if (missing.empty()) return kept;
+  const char* type = depth_type_ == ColmapDepthType::kGeometric ? "geometric" : "photometric";
+  if (kept.empty()) {
+    // Which maps the workspace has instead decides the fix.
+    const ColmapDepthType other_type =
+        depth_type_ == ColmapDepthType::kGeometric ? ColmapDepthType::kPhotometric : ColmapDepthType::kGeometric;
+    const char* other = depth_type_ == ColmapDepthType::kGeometric ? "photometric" : "geometric";
+    size_t others = 0;
+    for (const size_t i : order) others += std::filesystem::exists(depth_path(i, other_type), ec) ? 1 : 0;
+    std::string fix;
+    if (others > 0) {
+      fix = "; it has " + std::string(other) + " ones for " + std::to_string(others) + " of them" +
+            (depth_type_ == ColmapDepthType::kGeometric
+                 ? " (patch_match_stereo run with --PatchMatchStereo.geom_consistency false writes only those)"
+                 : "") +
+            ": set input.depth_type: " + other;
+    } else {
+      fix = "; run the dense matcher first (colmap patch_match_stereo, or a matcher writing "
+            "stereo/depth_maps/<image>." + std::string(type) + ".bin)";
+    }
+    throw InputError(depth_path(missing.front(), depth_type_),
+                     "missing: no " + std::string(type) + " depth map for any of the " + std::to_string(order.size()) +
+                         " images to fuse" + fix);
+  }
+  // As COLMAP's stereo_fusion ("Ignoring image ..., because input does not exist"): the other views are fused.
+  for (const size_t i : missing) {
+    WarnAboutInput(depth_path(i, depth_type_),
+                   "missing: image " + Quoted(model_.images[i].name) + " has no " + type +
+                       " depth map and is left out (" + std::to_string(kept.size()) + " of " +
+                       std::to_string(order.size()) + " images are fused); remove it from stereo/fusion.cfg, or "
+                       "match it, to silence this");
+  }
+  return kept;
 }
 
 std::string ColmapWorkspace::ImagePath(const View& view) const { return JoinPath(dir_, "images/" + view.name); }
