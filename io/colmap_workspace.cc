@@ -167,14 +167,12 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
     for (size_t i = 0; i < model_.images.size(); ++i) order.push_back(i);
   }
   const std::string cameras_file = SparseFile(dir, "cameras");
-  views_.reserve(order.size());
-  model_index_to_view_.assign(model_.images.size(), UINT32_MAX);
-  order = WithDepthMaps(order);
+  // Every listed image's camera is checked, with or without a depth map: a broken model is an error first.
+  std::vector<View> listed;
+  listed.reserve(order.size());
   for (const size_t i : order) {
-    model_index_to_view_[i] = static_cast<uint32_t>(views_.size());
     const ColmapImage& img = model_.images[i];
     View view;
-    view.index = static_cast<uint32_t>(views_.size());
     view.name = img.name;
     view.camera = ToPinhole(model_.cameras.at(img.camera_id), cameras_file, img.name);
     view.cam_from_world.rotation = img.cam_from_world_rotation.normalized();
@@ -182,7 +180,17 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
     const std::string who = "image " + Quoted(img.name) + " (image_id " + std::to_string(img.image_id) + ")";
     CheckViewIntrinsics(view.camera, cameras_file, who + ", camera_id " + std::to_string(img.camera_id));
     CheckViewPose(view.cam_from_world, images_file, who);
-    views_.push_back(std::move(view));
+    listed.push_back(std::move(view));
+  }
+  const std::vector<size_t> kept = WithDepthMaps(order);  // a subsequence of order
+  views_.reserve(kept.size());
+  model_index_to_view_.assign(model_.images.size(), UINT32_MAX);
+  for (size_t j = 0, k = 0; j < order.size() && k < kept.size(); ++j) {
+    if (order[j] != kept[k]) continue;
+    ++k;
+    model_index_to_view_[order[j]] = static_cast<uint32_t>(views_.size());
+    listed[j].index = static_cast<uint32_t>(views_.size());
+    views_.push_back(std::move(listed[j]));
   }
 }
 
