@@ -79,7 +79,7 @@ for ((rep = 1; rep <= repeats; ++rep)); do
     colmap_json=-
     if [[ ${STAGE_SCALING_COLMAP:-0} == 1 ]]; then
       # shellcheck disable=SC2086  # COLMAP_ARGS is a list of words
-      "$sacfuse" colmap-fusion "$dir/config.yaml" --out "$dir/colmap" --threads "$t" $colmap_args \
+      "$sacfuse" colmap-fusion "$config" --out "$dir/colmap" --threads "$t" $colmap_args \
         > "$dir/colmap.log" 2>&1 || { tail -n 20 "$dir/colmap.log" >&2; echo "$0: colmap-fusion failed" >&2; exit 1; }
       colmap_json=$dir/colmap/colmap_fusion.json
     fi
