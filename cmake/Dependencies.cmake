@@ -1,6 +1,6 @@
 # All third-party packages, found once. Every one comes from Debian (tools/install_deps.sh).
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
-find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs ximgproc)
+find_package(OpenCV 4 REQUIRED COMPONENTS core imgproc imgcodecs ximgproc calib3d)
 find_package(TBB REQUIRED)
 find_package(yaml-cpp REQUIRED)
 find_package(CLI11 REQUIRED)

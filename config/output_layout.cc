@@ -11,10 +11,13 @@ std::string InOutputDir(const JobConfig& config, const std::string& name) {
 
 }  // namespace
 
-std::string FusedLasPath(const JobConfig& config) {
-  return InOutputDir(config, config.output.format == "copc" ? "fused.copc.laz" : "fused." + config.output.format);
+std::string FusedLasPath(const JobConfig& config) { return FusedPathOfFormat(config, config.output.format); }
+std::string FusedPathOfFormat(const JobConfig& config, const std::string& format) {
+  return InOutputDir(config, format == "copc" ? "fused.copc.laz" : "fused." + format);
 }
 std::string TileIndexPath(const JobConfig& config) { return InOutputDir(config, "tiles.vpc"); }
+std::string WriterLockPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.lock"); }
+std::string WorkersLockPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.workers.lock"); }
 std::string EffectiveConfigPath(const JobConfig& config) { return InOutputDir(config, "sacfuse.effective.yaml"); }
 std::string RunReportPath(const JobConfig& config) { return InOutputDir(config, "run_report.json"); }
 std::string EvalJsonPath(const JobConfig& config) { return InOutputDir(config, "eval.json"); }

@@ -1,8 +1,11 @@
 #pragma once
 // Where a job's outputs live, one function per file or folder under output.dir (every other file names them
 // through these):
-//   DIR/fused.laz | fused.las | fused.copc.laz   the fused cloud (output.format)
+//   DIR/fused.laz | fused.las | fused.copc.laz   the fused cloud (output.format); a run removes the other
+//                               formats' files of an earlier run once it has its own (jobs/output_lock.h)
 //   DIR/tiles.vpc               tiled runs: the tile files as a virtual point cloud (io/vpc_writer.h)
+//   DIR/sacfuse.lock            the one-writer lock of `run` and `merge` (jobs/output_lock.h)
+//   DIR/sacfuse.workers.lock    the shared lock of `tile`, `plan` and `report` processes (jobs/output_lock.h)
 //   DIR/sacfuse.effective.yaml  the config actually used
 //   DIR/run_report.json         numbers of the run
 //   DIR/eval.json               scores against evaluation.reference (eval/eval_runner.h)
@@ -23,7 +26,11 @@
 namespace sacfuse {
 
 std::string FusedLasPath(const JobConfig& config);  // DIR/fused.laz, fused.las or fused.copc.laz (output.format)
-std::string TileIndexPath(const JobConfig& config);  // DIR/tiles.vpc
+// The fused cloud's path for any output.format value ("laz", "las" or "copc").
+std::string FusedPathOfFormat(const JobConfig& config, const std::string& format);
+std::string TileIndexPath(const JobConfig& config);    // DIR/tiles.vpc
+std::string WriterLockPath(const JobConfig& config);   // DIR/sacfuse.lock
+std::string WorkersLockPath(const JobConfig& config);  // DIR/sacfuse.workers.lock
 std::string EffectiveConfigPath(const JobConfig& config);
 std::string RunReportPath(const JobConfig& config);
 std::string EvalJsonPath(const JobConfig& config);

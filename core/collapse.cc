@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 
 #include "core/combine_anchors.h"
 #include "core/depth_combine.h"
@@ -20,10 +21,10 @@ namespace {
 // before they are written, so the output is that of a row-by-row visit.
 constexpr int kPatchRows = 32;
 constexpr int kPatchCols = 64;
-// Rows buffered at once: kPatchRows x kBandsPerBatch. The batch's emitted points are held until it is written: with
-// 32 bands a 1600-pixel-wide nadir view held 39 MB of points (aerial-bench Montpellier medium, issue 13); 8 bands
-// still give each thread dozens of patches.
-constexpr int kBandsPerBatch = 8;
+// Bands in flight at once (computed, or waiting to be written), each holding its emitted points until it is
+// written: with 32 a 1600-pixel-wide nadir view held 39 MB of points (aerial-bench Montpellier medium, issue 13);
+// 8 bands still give each thread dozens of patches.
+constexpr int kBandsInFlight = 8;
 constexpr int kMaxCoverageHops = 4;  // chains of choices longer than this are treated as not covering
 
 
@@ -106,7 +107,6 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
     std::vector<int> rows;
     CollapseStats stats;
   };
-  std::vector<PatchOutput> patch_out(static_cast<size_t>(kBandsPerBatch) * patches_per_band);
   std::vector<FusedPoint> band_points;
   const bool anchored = combine && options.combine_anchors;
 
@@ -206,27 +206,42 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
     stats.emitted = out.size();
   };
 
-  for (int first = 0; first < grid.bands(); first += kBandsPerBatch) {
-    const int bands = std::min(kBandsPerBatch, grid.bands() - first);
-    const int first_patch = first * patches_per_band;
-    tbb::parallel_for(0, bands * patches_per_band,
-                      [&](int i) { process_patch(grid.Patch(first_patch + i), patch_out[i]); });
-    for (int b = 0; b < bands; ++b) {
-      // Row order: each patch holds its rows in order, and the patches of a band lie left to right.
-      PatchOutput* band = &patch_out[static_cast<size_t>(b) * patches_per_band];
-      std::vector<size_t> next(patches_per_band, 0);
-      band_points.clear();
-      for (int row = grid.BandRowBegin(first + b); row < grid.BandRowEnd(first + b); ++row) {
-        for (int p = 0; p < patches_per_band; ++p) {
-          for (size_t& k = next[p]; k < band[p].points.size() && band[p].rows[k] == row; ++k) {
-            band_points.push_back(band[p].points[k]);
-          }
-        }
-      }
-      if (!band_points.empty()) sink.Write(band_points.data(), band_points.size());
-      for (int p = 0; p < patches_per_band; ++p) total += band[p].stats;
-    }
-  }
+  // The bands flow through a pipeline (issue 48): a band's patches are processed in parallel, and each band is
+  // put back into row order and written by one serial, in-order step while the next bands are computed, so the
+  // writing (LAS/LAZ encoding, I/O) overlaps the fusion instead of holding up every thread, and no thread waits at a
+  // batch's end. A band's slot is free again when the band kBandsInFlight before it has been written.
+  std::vector<std::vector<PatchOutput>> slots(kBandsInFlight, std::vector<PatchOutput>(patches_per_band));
+  int next_band = 0;
+  tbb::parallel_pipeline(
+      kBandsInFlight,
+      tbb::make_filter<void, int>(tbb::filter_mode::serial_in_order,
+                                  [&](tbb::flow_control& flow) {
+                                    if (next_band == grid.bands()) flow.stop();
+                                    return next_band++;
+                                  }) &
+          tbb::make_filter<int, int>(tbb::filter_mode::parallel,
+                                     [&](int b) {
+                                       std::vector<PatchOutput>& band = slots[b % kBandsInFlight];
+                                       tbb::parallel_for(0, patches_per_band, [&](int p) {
+                                         process_patch(grid.Patch(b * patches_per_band + p), band[p]);
+                                       });
+                                       return b;
+                                     }) &
+          tbb::make_filter<int, void>(tbb::filter_mode::serial_in_order, [&](int b) {
+            // Row order: each patch holds its rows in order, and the patches of a band lie left to right.
+            std::vector<PatchOutput>& band = slots[b % kBandsInFlight];
+            std::vector<size_t> next(patches_per_band, 0);
+            band_points.clear();
+            for (int row = grid.BandRowBegin(b); row < grid.BandRowEnd(b); ++row) {
+              for (int p = 0; p < patches_per_band; ++p) {
+                for (size_t& k = next[p]; k < band[p].points.size() && band[p].rows[k] == row; ++k) {
+                  band_points.push_back(band[p].points[k]);
+                }
+              }
+            }
+            if (!band_points.empty()) sink.Write(band_points.data(), band_points.size());
+            for (int p = 0; p < patches_per_band; ++p) total += band[p].stats;
+          }));
   return total;
 }
 

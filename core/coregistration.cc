@@ -133,35 +133,59 @@ std::vector<PairSums> PairsOfView(const std::vector<ViewState>& states, uint32_t
   return kept;
 }
 
-// Every view's pairs, in view order (deterministic for any thread count).
-std::vector<PairSums> AllPairs(const std::vector<ViewState>& states, const std::vector<std::vector<uint32_t>>& nbrs,
-                               const CoregistrationOptions& o) {
-  std::vector<std::vector<PairSums>> per_view(states.size());
+// Buffers of the iterations, reused: fresh ones every iteration cost page faults on the calling thread, a serial
+// share of the stage (issue 48).
+struct IterationBuffers {
+  std::vector<std::vector<PairSums>> per_view;
+  std::vector<PairSums> pairs;
+  std::vector<Eigen::Triplet<double>> triplets;
+};
+
+// Every view's pairs, in view order (deterministic for any thread count), into buffers->pairs.
+const std::vector<PairSums>& AllPairs(const std::vector<ViewState>& states,
+                                      const std::vector<std::vector<uint32_t>>& nbrs, const CoregistrationOptions& o,
+                                      IterationBuffers* buffers) {
+  std::vector<std::vector<PairSums>>& per_view = buffers->per_view;
+  per_view.resize(states.size());
   tbb::parallel_for(size_t{0}, states.size(), [&](size_t a) {
+    per_view[a].clear();
     if (states[a].samples > 0) per_view[a] = PairsOfView(states, static_cast<uint32_t>(a), nbrs[a], o);
   });
-  std::vector<PairSums> all;
-  for (auto& v : per_view) all.insert(all.end(), v.begin(), v.end());
-  return all;
+  std::vector<size_t> first(states.size() + 1, 0);
+  for (size_t a = 0; a < states.size(); ++a) first[a + 1] = first[a] + per_view[a].size();
+  buffers->pairs.resize(first.back());
+  tbb::parallel_for(size_t{0}, states.size(), [&](size_t a) {
+    std::copy(per_view[a].begin(), per_view[a].end(), buffers->pairs.begin() + static_cast<std::ptrdiff_t>(first[a]));
+  });
+  return buffers->pairs;
 }
 
-void AddBlock(std::vector<Eigen::Triplet<double>>* t, uint32_t row_view, uint32_t col_view, const Matrix6d& m) {
+// The 36 entries of block (row_view, col_view) = m, row by row, at `t`.
+void SetBlock(Eigen::Triplet<double>* t, uint32_t row_view, uint32_t col_view, const Matrix6d& m) {
   for (int i = 0; i < 6; ++i) {
-    for (int j = 0; j < 6; ++j) t->emplace_back(6 * row_view + i, 6 * col_view + j, m(i, j));
+    for (int j = 0; j < 6; ++j) *t++ = Eigen::Triplet<double>(6 * row_view + i, 6 * col_view + j, m(i, j));
   }
 }
 
 // The damped, datum-constrained step: minimises the linearised cost plus prior and damping with the mean rotation
 // and the mean translation of the step held at zero (exactly, through the constraint's six columns).
-Eigen::VectorXd SolveStep(const std::vector<ViewState>& states, const std::vector<PairSums>& pairs) {
+Eigen::VectorXd SolveStep(const std::vector<ViewState>& states, const std::vector<PairSums>& pairs,
+                          std::vector<Eigen::Triplet<double>>* triplet_buffer) {
   const int n = static_cast<int>(states.size()) * 6;
-  std::vector<Eigen::Triplet<double>> triplets;
+  // Each pair's four blocks in the pair's place of the list (the order the matrix sums duplicates in), in parallel.
+  std::vector<Eigen::Triplet<double>>& triplets = *triplet_buffer;
+  constexpr size_t kPerPair = 4 * 36;
+  triplets.resize(pairs.size() * kPerPair);
+  tbb::parallel_for(size_t{0}, pairs.size(), [&](size_t k) {
+    const PairSums& p = pairs[k];
+    Eigen::Triplet<double>* t = triplets.data() + k * kPerPair;
+    SetBlock(t, p.a, p.a, p.aa);
+    SetBlock(t + 36, p.b, p.b, p.bb);
+    SetBlock(t + 72, p.a, p.b, p.ab);
+    SetBlock(t + 108, p.b, p.a, p.ab.transpose());
+  });
   Eigen::VectorXd g = Eigen::VectorXd::Zero(n);
   for (const PairSums& p : pairs) {
-    AddBlock(&triplets, p.a, p.a, p.aa);
-    AddBlock(&triplets, p.b, p.b, p.bb);
-    AddBlock(&triplets, p.a, p.b, p.ab);
-    AddBlock(&triplets, p.b, p.a, p.ab.transpose());
     g.segment<6>(6 * p.a) += p.ga;
     g.segment<6>(6 * p.b) += p.gb;
   }
@@ -276,8 +300,9 @@ CoregistrationResult Coregister(const std::vector<CoregistrationInput>& inputs, 
   const std::vector<std::vector<uint32_t>> nbrs = NeighborsFromFootprints(
       boxes, directions, NeighborViewOptions{o.max_neighbor_views, o.max_view_angle_deg, 0.05});
 
+  IterationBuffers buffers;
   for (int it = 0; it <= o.iterations; ++it) {
-    const std::vector<PairSums> pairs = AllPairs(states, nbrs, o);
+    const std::vector<PairSums>& pairs = AllPairs(states, nbrs, o, &buffers);
     CoregistrationIteration summary = Summarise(pairs);
     if (it == 0) result.pairs = pairs.size(), ViewResiduals(pairs, &result.views, false);
     if (it == o.iterations) {  // residuals after the last step: reported, not solved
@@ -285,7 +310,7 @@ CoregistrationResult Coregister(const std::vector<CoregistrationInput>& inputs, 
       result.iterations.push_back(summary);
       break;
     }
-    const Eigen::VectorXd x = SolveStep(states, pairs);
+    const Eigen::VectorXd x = SolveStep(states, pairs, &buffers.triplets);
     std::vector<double> step_deg(nviews), step_m(nviews);
     for (size_t k = 0; k < nviews; ++k) {
       ViewState& s = states[k];

@@ -5,9 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/error.h"
 #include "eval/point_index.h"
@@ -27,15 +29,22 @@ void ParallelFor(size_t n, F&& f) {
   });
 }
 
-// Offsets from `origin` as floats; throws on non-finite input.
+// Offsets from `origin` as floats; throws on non-finite input, naming the first such point.
 std::vector<Eigen::Vector3f> ToLocal(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& origin,
                                      const char* what) {
   std::vector<Eigen::Vector3f> local(points.size());
-  for (size_t i = 0; i < points.size(); ++i) {
+  std::atomic<size_t> first_bad{points.size()};
+  ParallelFor(points.size(), [&](size_t i) {
     if (!points[i].allFinite()) {
-      throw Error(std::string(what) + " point " + std::to_string(i) + " has a non-finite coordinate");
+      size_t known = first_bad.load(std::memory_order_relaxed);
+      while (i < known && !first_bad.compare_exchange_weak(known, i, std::memory_order_relaxed)) {
+      }
+      return;
     }
     local[i] = (points[i] - origin).cast<float>();
+  });
+  if (first_bad < points.size()) {
+    throw Error(std::string(what) + " point " + std::to_string(first_bad.load()) + " has a non-finite coordinate");
   }
   return local;
 }
@@ -50,6 +59,23 @@ std::vector<uint8_t> MaskFlags(const std::vector<Eigen::Vector3f>& local, const 
   return in;
 }
 
+// How many outcomes are counted (not ignored) and how many of those are hits.
+void CountOutcomes(const std::vector<uint8_t>& outcomes, uint64_t* counted, uint64_t* hits) {
+  using Counts = std::pair<uint64_t, uint64_t>;
+  const Counts c = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, outcomes.size(), 1 << 16), Counts{0, 0},
+      [&](const tbb::blocked_range<size_t>& r, Counts acc) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+          acc.first += outcomes[i] != kIgnored;
+          acc.second += outcomes[i] == kHit;
+        }
+        return acc;
+      },
+      [](Counts a, Counts b) { return Counts{a.first + b.first, a.second + b.second}; });
+  *counted = c.first;
+  *hits = c.second;
+}
+
 double F1(double a, double c) { return a + c > 0.0 ? 2.0 * a * c / (a + c) : 0.0; }
 
 double Median(std::vector<float> v) {
@@ -62,34 +88,59 @@ double Median(std::vector<float> v) {
   return 0.5 * (lower + upper);
 }
 
-// Distance from each reference point (where `use` is non-zero) to its nearest point of the streamed cloud,
-// exact up to `radius` (+infinity beyond). Points are moved into the local frame (minus `origin`) and then by
-// local_from_input (the alignment; identity without one).
+// Per reference point, the distance to the nearest of the points offered to it, exact below `radius` (+infinity
+// beyond): completeness needs no more than whether that distance is within each threshold, so the reference's
+// index answers it and the result cloud needs no index of its own (no serial tree build over millions of points).
+// Offer may be called from many threads at once; the distances do not depend on the order.
+class NearestWithin {
+ public:
+  NearestWithin(const PointIndex& reference_index, size_t reference_size, float radius)
+      : index_(reference_index), radius_(radius), best_(reference_size) {
+    for (auto& b : best_) b.store(std::numeric_limits<float>::infinity(), std::memory_order_relaxed);
+  }
+  void Offer(const Eigen::Vector3f& p) {
+    index_.ForEachWithin(p, radius_, [&](uint32_t j, float squared_distance) {
+      const float d = std::sqrt(squared_distance);
+      float known = best_[j].load(std::memory_order_relaxed);
+      while (d < known && !best_[j].compare_exchange_weak(known, d, std::memory_order_relaxed)) {
+      }
+    });
+  }
+  // The distances of the reference points whose `use` flag is set (+infinity for the others).
+  std::vector<float> Distances(const std::vector<uint8_t>& use) const {
+    std::vector<float> out(best_.size(), std::numeric_limits<float>::infinity());
+    ParallelFor(best_.size(), [&](size_t j) {
+      if (use[j] != 0) out[j] = best_[j].load(std::memory_order_relaxed);
+    });
+    return out;
+  }
+
+ private:
+  const PointIndex& index_;
+  float radius_;
+  std::vector<std::atomic<float>> best_;
+};
+
+// The search radius of completeness for thresholds up to `max_tau`: a little beyond it, so that every point whose
+// float distance rounds to max_tau is found (the index compares squared distances strictly).
+float CompletenessRadius(double max_tau) { return static_cast<float>(max_tau * 1.001); }
+
+// Completeness distances against a streamed cloud: its points are moved into the local frame (minus `origin`) and
+// then by local_from_input (the alignment; identity without one).
 std::vector<float> StreamedNearestDistances(const PointIndex& reference_index, size_t reference_size,
                                             const std::vector<uint8_t>& use, const Eigen::Vector3d& origin,
-                                            const Eigen::Matrix4d& local_from_input, float radius,
+                                            const Eigen::Matrix4d& local_from_input, double max_tau,
                                             const ResultChunks& all_points) {
-  std::vector<std::atomic<float>> best(reference_size);
-  for (auto& b : best) b.store(std::numeric_limits<float>::infinity(), std::memory_order_relaxed);
+  NearestWithin nearest(reference_index, reference_size, CompletenessRadius(max_tau));
   const Eigen::Matrix3d rot = local_from_input.topLeftCorner<3, 3>();
   const Eigen::Vector3d trans = local_from_input.topRightCorner<3, 1>();
   all_points([&](const std::vector<Eigen::Vector3d>& chunk) {
     ParallelFor(chunk.size(), [&](size_t i) {
       if (!chunk[i].allFinite()) throw Error("result point has a non-finite coordinate");
-      const Eigen::Vector3f p = (rot * (chunk[i] - origin) + trans).cast<float>();
-      reference_index.ForEachWithin(p, radius, [&](uint32_t j, float squared_distance) {
-        const float d = std::sqrt(squared_distance);
-        float known = best[j].load(std::memory_order_relaxed);
-        while (d < known && !best[j].compare_exchange_weak(known, d, std::memory_order_relaxed)) {
-        }
-      });
+      nearest.Offer((rot * (chunk[i] - origin) + trans).cast<float>());
     });
   });
-  std::vector<float> out(reference_size, std::numeric_limits<float>::infinity());
-  for (size_t j = 0; j < reference_size; ++j) {
-    if (use[j] != 0) out[j] = best[j].load(std::memory_order_relaxed);
-  }
-  return out;
+  return nearest.Distances(use);
 }
 
 }  // namespace
@@ -104,12 +155,17 @@ EvalReport EvaluateClouds(const std::vector<Eigen::Vector3d>& result, const std:
   }
   if (reference.empty()) throw Error("EvaluateClouds: the reference cloud is empty; nothing to evaluate against");
   const std::vector<double> taus = EvalThresholds(options);
+  const double max_tau = *std::max_element(taus.begin(), taus.end());
   const double voxel = EvalVoxelSize(options);
 
   EvalReport report;
   report.result_points = result.size();
   report.reference_points = reference.size();
-  for (uint16_t id : result_source_ids) ++report.source_id_histogram[id];
+  std::vector<uint64_t> per_id(1 << 16, 0);  // counted in an array: a map insert per point was a serial hot spot
+  for (const uint16_t id : result_source_ids) ++per_id[id];
+  for (size_t id = 0; id < per_id.size(); ++id) {
+    if (per_id[id] > 0) report.source_id_histogram[static_cast<uint16_t>(id)] = per_id[id];
+  }
 
   // Local frame: float offsets from the reference's min corner (double).
   Eigen::Vector3d origin = reference[0];
@@ -142,13 +198,13 @@ EvalReport EvaluateClouds(const std::vector<Eigen::Vector3d>& result, const std:
       local_from_input.topLeftCorner<3, 3>() = rot;
       local_from_input.topRightCorner<3, 1>() = report.alignment.topRightCorner<3, 1>() - origin + rot * origin;
     }
-    ref_dist = StreamedNearestDistances(ref_index, ref.size(), ref_in, origin, local_from_input,
-                                        static_cast<float>(*std::max_element(taus.begin(), taus.end())),
+    ref_dist = StreamedNearestDistances(ref_index, ref.size(), ref_in, origin, local_from_input, max_tau,
                                         all_result_points);
     report.completeness_from_all_points = true;
   } else {
-    const PointIndex res_index(res);
-    ref_dist = NearestDistances(res_index, ref, &ref_in);
+    NearestWithin nearest(ref_index, ref.size(), CompletenessRadius(max_tau));
+    ParallelFor(res.size(), [&](size_t i) { nearest.Offer(res[i]); });
+    ref_dist = nearest.Distances(ref_in);
   }
   const VoxelGroups res_voxels(res, voxel, &res_in);
   const VoxelGroups ref_voxels(ref, voxel, &ref_in);
@@ -186,14 +242,8 @@ EvalReport EvaluateClouds(const std::vector<Eigen::Vector3d>& result, const std:
 
     ThresholdScore s;
     s.tau_m = tau;
-    for (uint8_t o : res_out) {
-      s.result_observed += o != kIgnored;
-      s.result_accurate += o == kHit;
-    }
-    for (uint8_t o : ref_out) {
-      s.reference_visible += o != kIgnored;
-      s.reference_complete += o == kHit;
-    }
+    CountOutcomes(res_out, &s.result_observed, &s.result_accurate);
+    CountOutcomes(ref_out, &s.reference_visible, &s.reference_complete);
     s.accuracy = res_voxels.CellMean(res_out, &s.accuracy_voxels);
     s.completeness = ref_voxels.CellMean(ref_out, &s.completeness_voxels);
     s.f1 = F1(s.accuracy, s.completeness);

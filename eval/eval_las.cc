@@ -6,6 +6,9 @@
 #include <string>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 #include "io/geo_mask_io.h"
 #include "io/input_file.h"
@@ -36,6 +39,7 @@ void ForEachLasChunk(const std::string& path, const std::function<void(uint64_t)
 
 // The coordinates (and point source IDs) of a LAS file: every `stride`-th point (the first, then every stride-th
 // after it), stride = ceil(count / max_points) beyond max_points (0 = all); *count receives the file's count.
+// Each chunk is copied in parallel into its places.
 void ReadLasCoordinates(const std::string& path, std::vector<Eigen::Vector3d>* xyz, std::vector<uint16_t>* ids,
                         double max_points = 0, uint64_t* stride_out = nullptr, uint64_t* count_out = nullptr) {
   uint64_t stride = 1, index = 0;
@@ -49,11 +53,21 @@ void ReadLasCoordinates(const std::string& path, std::vector<Eigen::Vector3d>* x
         if (ids != nullptr) ids->reserve(static_cast<size_t>(count / stride + 1));
       },
       [&](const std::vector<LasPoint>& chunk) {
-        for (const LasPoint& p : chunk) {
-          if (index++ % stride != 0) continue;
-          xyz->push_back(p.xyz);
-          if (ids != nullptr) ids->push_back(p.point_source_id);
-        }
+        // Kept: the points whose index in the file is a multiple of the stride.
+        const uint64_t first_kept = (index + stride - 1) / stride;
+        const uint64_t end_kept = (index + chunk.size() + stride - 1) / stride;
+        const size_t at = xyz->size();
+        xyz->resize(at + static_cast<size_t>(end_kept - first_kept));
+        if (ids != nullptr) ids->resize(xyz->size());
+        tbb::parallel_for(tbb::blocked_range<uint64_t>(first_kept, end_kept, 4096),
+                          [&](const tbb::blocked_range<uint64_t>& r) {
+                            for (uint64_t k = r.begin(); k < r.end(); ++k) {
+                              const LasPoint& p = chunk[static_cast<size_t>(k * stride - index)];
+                              (*xyz)[at + static_cast<size_t>(k - first_kept)] = p.xyz;
+                              if (ids != nullptr) (*ids)[at + static_cast<size_t>(k - first_kept)] = p.point_source_id;
+                            }
+                          });
+        index += chunk.size();
       });
 }
 

@@ -3,7 +3,6 @@
 // left to the callers' wider rules (jobs/output_lock.h).
 #include "io/atomic_file.h"
 
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,15 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using sacfuse::testing::TempDir;
-
-// The pid of a child that has exited (and was reaped): not alive.
-int64_t GonePid() {
-  const pid_t child = ::fork();
-  if (child == 0) ::_exit(0);
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  return child;
-}
 
 TEST(AtomicFileTest, TemporaryNamesNameHostAndPid) {
   const std::string name = fs::path(TemporaryPathFor("/x/fused.laz")).filename().string();
@@ -56,7 +46,7 @@ TEST(AtomicFileTest, CleanupRemovesOnlyFilesOfGoneProcessesOfThisHost) {
   TempDir dir;
   const std::string live = TemporaryPathFor((dir / "live.json").string());  // this process: alive
   const std::string host = TemporaryFileOwnerOf(fs::path(live).filename().string())->host;
-  const std::string gone = (dir / ("gone.json.tmp-" + host + "-" + std::to_string(GonePid()) + "-0")).string();
+  const std::string gone = (dir / ("gone.json.tmp-" + host + "-" + std::to_string(testing::GonePid()) + "-0")).string();
   const std::string elsewhere = (dir / "far.json.tmp-another-host-1-0").string();
   const std::string older = (dir / "old.json.tmp-999999-0").string();
   const std::string foreign = (dir / "notes.tmp-draft").string();

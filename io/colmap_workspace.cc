@@ -167,13 +167,12 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
     for (size_t i = 0; i < model_.images.size(); ++i) order.push_back(i);
   }
   const std::string cameras_file = SparseFile(dir, "cameras");
-  views_.reserve(order.size());
-  model_index_to_view_.assign(model_.images.size(), UINT32_MAX);
+  // Every listed image's camera is checked, with or without a depth map: a broken model is an error first.
+  std::vector<View> listed;
+  listed.reserve(order.size());
   for (const size_t i : order) {
-    model_index_to_view_[i] = static_cast<uint32_t>(views_.size());
     const ColmapImage& img = model_.images[i];
     View view;
-    view.index = static_cast<uint32_t>(views_.size());
     view.name = img.name;
     view.camera = ToPinhole(model_.cameras.at(img.camera_id), cameras_file, img.name);
     view.cam_from_world.rotation = img.cam_from_world_rotation.normalized();
@@ -181,8 +180,60 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
     const std::string who = "image " + Quoted(img.name) + " (image_id " + std::to_string(img.image_id) + ")";
     CheckViewIntrinsics(view.camera, cameras_file, who + ", camera_id " + std::to_string(img.camera_id));
     CheckViewPose(view.cam_from_world, images_file, who);
-    views_.push_back(std::move(view));
+    listed.push_back(std::move(view));
   }
+  const std::vector<size_t> kept = WithDepthMaps(order);  // a subsequence of order
+  views_.reserve(kept.size());
+  model_index_to_view_.assign(model_.images.size(), UINT32_MAX);
+  for (size_t j = 0, k = 0; j < order.size() && k < kept.size(); ++j) {
+    if (order[j] != kept[k]) continue;
+    ++k;
+    model_index_to_view_[order[j]] = static_cast<uint32_t>(views_.size());
+    listed[j].index = static_cast<uint32_t>(views_.size());
+    views_.push_back(std::move(listed[j]));
+  }
+}
+
+std::vector<size_t> ColmapWorkspace::WithDepthMaps(const std::vector<size_t>& order) const {
+  auto depth_path = [&](size_t i, ColmapDepthType type) {
+    return JoinPath(dir_, "stereo/depth_maps/" + model_.images[i].name + TypeSuffix(type));
+  };
+  std::error_code ec;
+  std::vector<size_t> kept, missing;
+  for (const size_t i : order) (std::filesystem::exists(depth_path(i, depth_type_), ec) ? kept : missing).push_back(i);
+  if (missing.empty()) return kept;
+  const char* type = depth_type_ == ColmapDepthType::kGeometric ? "geometric" : "photometric";
+  if (kept.empty()) {
+    // Which maps the workspace has instead decides the fix.
+    const ColmapDepthType other_type =
+        depth_type_ == ColmapDepthType::kGeometric ? ColmapDepthType::kPhotometric : ColmapDepthType::kGeometric;
+    const char* other = depth_type_ == ColmapDepthType::kGeometric ? "photometric" : "geometric";
+    size_t others = 0;
+    for (const size_t i : order) others += std::filesystem::exists(depth_path(i, other_type), ec) ? 1 : 0;
+    std::string fix;
+    if (others > 0) {
+      fix = "; it has " + std::string(other) + " ones for " + std::to_string(others) + " of them" +
+            (depth_type_ == ColmapDepthType::kGeometric
+                 ? " (patch_match_stereo run with --PatchMatchStereo.geom_consistency false writes only those)"
+                 : "") +
+            ": set input.depth_type: " + other;
+    } else {
+      fix = "; run the dense matcher first (colmap patch_match_stereo, or a matcher writing "
+            "stereo/depth_maps/<image>." + std::string(type) + ".bin)";
+    }
+    throw InputError(depth_path(missing.front(), depth_type_),
+                     "missing: no " + std::string(type) + " depth map for any of the " + std::to_string(order.size()) +
+                         " images to fuse" + fix);
+  }
+  // As COLMAP's stereo_fusion ("Ignoring image ..., because input does not exist"): the other views are fused.
+  for (const size_t i : missing) {
+    WarnAboutInput(depth_path(i, depth_type_),
+                   "missing: image " + Quoted(model_.images[i].name) + " has no " + type +
+                       " depth map and is left out (" + std::to_string(kept.size()) + " of " +
+                       std::to_string(order.size()) + " images are fused); remove it from stereo/fusion.cfg, or "
+                       "match it, to silence this");
+  }
+  return kept;
 }
 
 std::string ColmapWorkspace::ImagePath(const View& view) const { return JoinPath(dir_, "images/" + view.name); }

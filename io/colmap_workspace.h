@@ -22,6 +22,9 @@ class ColmapWorkspace : public DepthBlock {
  public:
   // Reads the sparse model and fusion.cfg. Views are numbered 0..n-1 in fusion.cfg order (else images order).
   // Cameras must be PINHOLE or SIMPLE_PINHOLE, or another model whose distortion parameters are all zero.
+  // An image without a depth map of `depth_type` is left out with a warning naming the file, as COLMAP's
+  // stereo_fusion does (the dense matcher failed on it, or fusion.cfg lists images it did not match); when none has
+  // one, InputError says which depth maps the workspace has instead and what to set or run.
   ColmapWorkspace(const std::string& dir, ColmapDepthType depth_type);
 
   const std::string& dir() const { return dir_; }
@@ -51,6 +54,9 @@ class ColmapWorkspace : public DepthBlock {
   ConsistencyGraph ReadConsistencyGraph(const View& view) const override;
 
  private:
+  // The model indices of `order` whose depth map exists (see the constructor).
+  std::vector<size_t> WithDepthMaps(const std::vector<size_t>& order) const;
+
   std::string dir_;
   ColmapDepthType depth_type_;
   ColmapModel model_;

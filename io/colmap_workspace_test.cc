@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "io/colmap_array.h"
+#include "tests/support/log_capture.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse {
@@ -295,6 +296,39 @@ TEST(ColmapWorkspaceTest, MissingOrBadFilesNameFileAndImage) {
   ExpectInputError([&] { ws.ReadImage(v); }, {ws.ImagePath(v), "oblique/img2.png", "missing"});
   WriteFile(ws.ImagePath(v), EncodePng(4, 3, 1, std::vector<uint8_t>(12, 0)));
   ExpectInputError([&] { ws.ReadImage(v); }, {ws.ImagePath(v), "oblique/img2.png", "4x3"});
+}
+
+// Real workspaces as the matcher leaves them: a view without a depth map is left out with a warning naming the
+// file (COLMAP's stereo_fusion ignores it too); a workspace with photometric maps only, or none, names the fix.
+TEST(ColmapWorkspaceTest, ViewsWithoutDepthMapsAreLeftOutOrNameTheFix) {
+  TempDir tmp;
+  BuildWorkspace(tmp.path());
+  const std::string dir = tmp.path().string();
+  const std::filesystem::path maps = tmp / "stereo/depth_maps";
+  std::filesystem::remove(maps / "oblique/img2.png.geometric.bin");
+  {
+    testing::LogCapture log;
+    const ColmapWorkspace ws(dir, ColmapDepthType::kGeometric);
+    ASSERT_EQ(ws.views().size(), 1u);
+    EXPECT_EQ(ws.views()[0].name, "nadir/img0.png");
+    EXPECT_EQ(ws.views()[0].index, 0u);
+    EXPECT_EQ(ws.ReadDepthMap(ws.views()[0]).at(0, 0), 100.0f);
+    EXPECT_NE(log.text().find("oblique/img2.png.geometric.bin: missing: image \"oblique/img2.png\" has no geometric "
+                              "depth map and is left out (1 of 2 images are fused)"),
+              std::string::npos)
+        << log.text();
+    // The photometric maps are all there.
+    EXPECT_EQ(ColmapWorkspace(dir, ColmapDepthType::kPhotometric).views().size(), 2u);
+  }
+  std::filesystem::remove(maps / "nadir/img0.png.geometric.bin");
+  ExpectInputError([&] { ColmapWorkspace(dir, ColmapDepthType::kGeometric); },
+                   {"no geometric depth map for any of the 2 images", "it has photometric ones for 2 of them",
+                    "geom_consistency false", "set input.depth_type: photometric"});
+  for (const char* name : {"oblique/img2.png", "nadir/img0.png"}) {
+    std::filesystem::remove(maps / (std::string(name) + ".photometric.bin"));
+  }
+  ExpectInputError([&] { ColmapWorkspace(dir, ColmapDepthType::kPhotometric); },
+                   {"no photometric depth map for any of the 2 images", "run the dense matcher first"});
 }
 
 TEST(ColmapWorkspaceTest, DistortedCamerasAreRejected) {

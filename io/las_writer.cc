@@ -1,6 +1,7 @@
 #include "io/las_writer.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +9,10 @@
 #include <ctime>
 #include <limits>
 #include <unistd.h>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -140,35 +145,83 @@ struct LasWriter::Impl {
 
   bool AppendLaz(LasReader& reader);
 
+  // The stored integers' bounds and the returns of a run of records.
+  struct RecordStats {
+    std::array<int32_t, 3> lo = {std::numeric_limits<int32_t>::max(), std::numeric_limits<int32_t>::max(),
+                                 std::numeric_limits<int32_t>::max()};
+    std::array<int32_t, 3> hi = {std::numeric_limits<int32_t>::min(), std::numeric_limits<int32_t>::min(),
+                                 std::numeric_limits<int32_t>::min()};
+    std::array<uint64_t, 15> returns = {};
+    void Add(const RecordStats& o) {
+      for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], o.lo[a]), hi[a] = std::max(hi[a], o.hi[a]);
+      for (size_t r = 0; r < returns.size(); ++r) returns[r] += o.returns[r];
+    }
+  };
+
+  // Points are converted and encoded in parallel, kEncodeGrain at a time: records are independent, and a serial
+  // loop here was the serial share of an untiled run's fusion stage. Bounds and counts are exact (min, max, sums),
+  // so the file is the same for any thread count.
+  static constexpr size_t kEncodeGrain = 4096;
+
   template <typename GetPoint>
   void WriteChunk(size_t n, GetPoint get) {
     CheckWritable(n);
     if (n == 0) return;
-    // Pass 1: validate the whole chunk, so that a rejected chunk leaves the file unchanged.
+    // Pass 1: validate the whole chunk, so that a rejected chunk leaves the file unchanged. When a point fails, a
+    // serial pass finds the first one and throws its error.
     const Eigen::Vector3d use_offset = OffsetFor(get(0), count);
-    std::vector<uint8_t> scratch(record_length);
-    for (size_t i = 0; i < n; ++i) EncodeOne(get(i), count + i, use_offset, scratch.data());
-    // Pass 2: store.
+    std::atomic<bool> rejected{false};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kEncodeGrain), [&](const tbb::blocked_range<size_t>& r) {
+      std::vector<uint8_t> scratch(record_length);
+      try {
+        for (size_t i = r.begin(); i < r.end(); ++i) EncodeOne(get(i), count + i, use_offset, scratch.data());
+      } catch (const Error&) {
+        rejected = true;
+      }
+    });
+    if (rejected) {
+      std::vector<uint8_t> scratch(record_length);
+      for (size_t i = 0; i < n; ++i) EncodeOne(get(i), count + i, use_offset, scratch.data());
+    }
+    // Pass 2: store, in runs that end where the buffer fills and is flushed.
     offset = use_offset;
-    for (size_t i = 0; i < n; ++i) {
-      const LasPoint point = get(i);
-      if ((buffered + 1) * record_length > buffer.size()) {
-        buffer.resize(std::min(buffer_records, std::max<size_t>(4096, 2 * buffered)) * record_length);
+    for (size_t first = 0; first < n;) {
+      const size_t take = std::min(n - first, buffer_records - buffered);
+      if ((buffered + take) * record_length > buffer.size()) {
+        const size_t grown = std::max({size_t{4096}, 2 * buffered, buffered + take});
+        buffer.resize(std::min(buffer_records, grown) * record_length);
       }
-      uint8_t* record = buffer.data() + buffered * record_length;
-      EncodeOne(point, count, use_offset, record);
+      uint8_t* const records = buffer.data() + buffered * record_length;
+      const uint64_t index = count;
+      const RecordStats stats = tbb::parallel_reduce(
+          tbb::blocked_range<size_t>(0, take, kEncodeGrain), RecordStats{},
+          [&](const tbb::blocked_range<size_t>& r, RecordStats acc) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+              const LasPoint point = get(first + i);
+              uint8_t* record = records + i * record_length;
+              EncodeOne(point, index + i, use_offset, record);
+              for (int a = 0; a < 3; ++a) {
+                const int32_t v = lf::GetI32(record + 4 * a);
+                acc.lo[a] = std::min(acc.lo[a], v);
+                acc.hi[a] = std::max(acc.hi[a], v);
+              }
+              if (point.return_number >= 1 && point.return_number <= 15) ++acc.returns[point.return_number - 1];
+            }
+            return acc;
+          },
+          [](RecordStats a, const RecordStats& b) {
+            a.Add(b);
+            return a;
+          });
       for (int a = 0; a < 3; ++a) {
-        const int32_t v = lf::GetI32(record + 4 * a);
-        if (count == 0) {
-          stored_min[a] = stored_max[a] = v;
-        } else {
-          stored_min[a] = std::min(stored_min[a], v);
-          stored_max[a] = std::max(stored_max[a], v);
-        }
+        stored_min[a] = count == 0 ? stats.lo[a] : std::min(stored_min[a], stats.lo[a]);
+        stored_max[a] = count == 0 ? stats.hi[a] : std::max(stored_max[a], stats.hi[a]);
       }
-      if (point.return_number >= 1 && point.return_number <= 15) ++by_return[point.return_number - 1];
-      ++count;
-      if (++buffered == buffer_records) FlushBuffer();
+      for (size_t r = 0; r < by_return.size(); ++r) by_return[r] += stats.returns[r];
+      count += take;
+      buffered += take;
+      first += take;
+      if (buffered == buffer_records) FlushBuffer();
     }
   }
 };

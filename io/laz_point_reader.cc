@@ -3,6 +3,7 @@
 #include <cerrno>
 #include <algorithm>
 #include <cstring>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 
@@ -44,7 +45,9 @@ LazPointReader::LazPointReader(const std::string& path, FILE* file, uint64_t fil
   ReadChunkTable(vlr.chunk_size);
 }
 
-LazPointReader::~LazPointReader() = default;
+LazPointReader::~LazPointReader() {
+  if (ahead_running_) ahead_task_->wait();  // the task catches its own exceptions
+}
 
 void LazPointReader::Fail(const std::string& message) const { throw InputError(path_, message); }
 
@@ -129,9 +132,7 @@ void LazPointReader::ReadChunkTable(uint32_t chunk_size) {
   }
 }
 
-void LazPointReader::DecodeBatch() {
-  if (next_chunk_ >= chunks_.size()) Fail("LAZ: read past the last point");
-  const size_t first = next_chunk_;
+void LazPointReader::DecodeBatch(size_t first, Batch* batch) {
   size_t last = first + 1;  // one past the batch's last chunk
   uint64_t points = chunks_[first].points;
   while (last < chunks_.size() && last - first < kBatchChunks && points + chunks_[last].points <= kBatchPoints) {
@@ -141,16 +142,22 @@ void LazPointReader::DecodeBatch() {
   const size_t n = last - first;
   // The chunks lie one after the other in the file: one read for the batch, before any thread starts.
   const uint64_t begin = chunks_[first].start;
-  batch_bytes_.resize(static_cast<size_t>(chunks_[last - 1].start + chunks_[last - 1].bytes - begin));
-  ReadAt(begin, batch_bytes_.data(), batch_bytes_.size());
-  batch_records_.resize(static_cast<size_t>(points) * record_length_);
-  while (decoders_.size() < n) decoders_.push_back(std::make_unique<laz::ChunkDecoder>(vlr_, record_length_));
+  batch->bytes.resize(static_cast<size_t>(chunks_[last - 1].start + chunks_[last - 1].bytes - begin));
+  ReadAt(begin, batch->bytes.data(), batch->bytes.size());
+  // Not zero-filled: every record the reading hands out is written by its chunk's decoder first (in parallel).
+  const size_t record_bytes = static_cast<size_t>(points) * record_length_;
+  if (record_bytes > batch->capacity) {
+    batch->records.reset(new uint8_t[record_bytes]);
+    batch->capacity = record_bytes;
+  }
+  if (decoders_.size() < n) decoders_.resize(n);  // made by the chunks' tasks (their models are megabytes)
   std::vector<uint64_t> decoded(n, 0);  // records of each chunk decoded before an error
   std::vector<std::string> errors(n);
   tbb::parallel_for(size_t{0}, n, [&](size_t i) {
     const Chunk& c = chunks_[first + i];
-    const uint8_t* bytes = batch_bytes_.data() + (c.start - begin);
-    uint8_t* out = batch_records_.data() + (c.first_point - chunks_[first].first_point) * record_length_;
+    const uint8_t* bytes = batch->bytes.data() + (c.start - begin);
+    uint8_t* out = batch->records.get() + (c.first_point - chunks_[first].first_point) * record_length_;
+    if (!decoders_[i]) decoders_[i] = std::make_unique<laz::ChunkDecoder>(vlr_, record_length_);
     const std::string name = "LAZ chunk " + std::to_string(first + i) + " of " + std::to_string(chunks_.size());
     try {
       decoders_[i]->Start(bytes, static_cast<size_t>(c.bytes), c.points);
@@ -166,36 +173,73 @@ void LazPointReader::DecodeBatch() {
     }
   });
   // The records up to the first error, in file order; the error is raised when the reading gets there.
-  batch_pos_ = 0;
-  batch_valid_ = 0;
-  batch_error_.clear();
+  batch->first_chunk = first;
+  batch->end_chunk = last;
+  batch->valid = 0;
+  batch->error.clear();
   for (size_t i = 0; i < n; ++i) {
-    batch_valid_ += static_cast<size_t>(decoded[i]);
+    batch->valid += static_cast<size_t>(decoded[i]);
     if (!errors[i].empty()) {
-      batch_error_ = errors[i];
+      batch->error = errors[i];
       break;
     }
   }
-  next_chunk_ = last;
+}
+
+void LazPointReader::WaitForReadAhead(bool keep) {
+  if (!ahead_running_) return;
+  ahead_task_->wait();  // the task catches its own exceptions: this never throws
+  ahead_running_ = false;
+  ahead_ready_ = keep && !ahead_failure_;
+  if (!keep) ahead_failure_ = nullptr;
+  if (ahead_failure_) std::rethrow_exception(std::exchange(ahead_failure_, nullptr));
+}
+
+void LazPointReader::NextBatch() {
+  if (next_chunk_ >= chunks_.size()) Fail("LAZ: read past the last point");
+  WaitForReadAhead(/*keep=*/true);
+  if (ahead_ready_ && ahead_.first_chunk == next_chunk_) {
+    std::swap(current_, ahead_);
+  } else {
+    DecodeBatch(next_chunk_, &current_);
+  }
+  ahead_ready_ = false;
+  pos_ = 0;
+  next_chunk_ = current_.end_chunk;
+  // The next batch in the background, unless this one ends the file or breaks off at an error.
+  if (next_chunk_ < chunks_.size() && current_.error.empty()) {
+    if (!ahead_task_) ahead_task_ = std::make_unique<tbb::task_group>();
+    ahead_running_ = true;
+    const size_t first = next_chunk_;
+    ahead_task_->run([this, first] {
+      try {
+        DecodeBatch(first, &ahead_);
+      } catch (...) {
+        ahead_failure_ = std::current_exception();
+      }
+    });
+  }
 }
 
 void LazPointReader::Read(uint8_t* records, size_t count) {
   while (count > 0) {
-    if (batch_pos_ == batch_valid_) {
-      if (!batch_error_.empty()) Fail(batch_error_);
-      DecodeBatch();
+    if (pos_ == current_.valid) {
+      if (!current_.error.empty()) Fail(current_.error);
+      NextBatch();
       continue;
     }
-    const size_t k = std::min(count, batch_valid_ - batch_pos_);
-    std::memcpy(records, batch_records_.data() + batch_pos_ * record_length_, k * record_length_);
+    const size_t k = std::min(count, current_.valid - pos_);
+    std::memcpy(records, current_.records.get() + pos_ * record_length_, k * record_length_);
     records += k * record_length_;
-    batch_pos_ += k;
+    pos_ += k;
     count -= k;
   }
 }
 
 bool LazPointReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points) {
-  if (batch_pos_ != batch_valid_ || !batch_error_.empty() || next_chunk_ >= chunks_.size()) return false;
+  if (pos_ != current_.valid || !current_.error.empty() || next_chunk_ >= chunks_.size()) return false;
+  WaitForReadAhead(/*keep=*/false);  // it decoded this chunk: dropped, the file is the caller's again
+  ahead_ready_ = false;
   const Chunk& c = chunks_[next_chunk_];
   bytes->resize(static_cast<size_t>(c.bytes));
   ReadAt(c.start, bytes->data(), bytes->size());
@@ -205,10 +249,12 @@ bool LazPointReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* poin
 }
 
 void LazPointReader::Rewind() {
+  WaitForReadAhead(/*keep=*/false);
+  ahead_ready_ = false;
   next_chunk_ = 0;
-  batch_pos_ = 0;
-  batch_valid_ = 0;
-  batch_error_.clear();
+  pos_ = 0;
+  current_.valid = 0;
+  current_.error.clear();
 }
 
 }  // namespace sacfuse

@@ -2,15 +2,20 @@
 // Streaming decoder of the point data of a LAZ file (LASzip compressed data format) for LasReader: reads the
 // chunk table, then batches of up to kBatchChunks consecutive chunks (at most kBatchPoints points, but always one
 // whole chunk), decoded in parallel (chunks are independent in LAZ: one decoder per chunk of the batch), yielding
-// uncompressed LAS point records in file order. Memory is bounded by one batch. Supports point formats 0-3 point-wise chunked (items version 2) and 6-8 layered chunked (version 3),
+// uncompressed LAS point records in file order. While the reader hands out one batch, the next one is decoded in
+// the background (read-ahead), so the caller's own work on the points overlaps the decoding instead of leaving the
+// other threads idle (issue 48). Memory is bounded by two batches. Supports point formats 0-3 point-wise chunked (items version 2) and 6-8 layered chunked (version 3),
 // with extra bytes, fixed or variable chunk sizes; anything else is refused with an InputError naming the file and
 // the compressor/item version. Corrupt or truncated data give an InputError naming the file and the chunk.
 // Private to io/.
 #include <cstdint>
 #include <cstdio>
+#include <exception>
 #include <memory>
 #include <string>
 #include <vector>
+
+#include <tbb/task_group.h>
 
 #include "io/las_types.h"
 #include "io/laz_vlr.h"
@@ -47,11 +52,27 @@ class LazPointReader {
   uint64_t chunk_table_end() const { return table_end_; }
 
  private:
+  // Decoded records of consecutive chunks [first_chunk, end_chunk).
+  struct Batch {
+    size_t first_chunk = 0, end_chunk = 0;
+    std::vector<uint8_t> bytes;              // the compressed chunks, as in the file
+    std::unique_ptr<uint8_t[]> records;      // their decoded records
+    size_t capacity = 0;                     // bytes of records
+    size_t valid = 0;                        // records decoded before the batch's first error (all when none)
+    std::string error;                       // that error's message, empty when the whole batch decoded
+  };
+
   [[noreturn]] void Fail(const std::string& message) const;
   void ReadAt(uint64_t position, uint8_t* out, size_t size) const;
   void ReadChunkTable(uint32_t chunk_size);
-  // Reads the chunks from next_chunk_ on into batch_bytes_ and decodes them in parallel into batch_records_.
-  void DecodeBatch();
+  // Reads the chunks from `first` on into batch->bytes and decodes them in parallel into batch->records.
+  void DecodeBatch(size_t first, Batch* batch);
+  // Makes the batch starting at next_chunk_ current (the read-ahead's when it has it), then starts the read-ahead
+  // of the batch after it.
+  void NextBatch();
+  // Waits for a running read-ahead. `keep`: its batch becomes usable (its I/O error is rethrown); else it is
+  // dropped, error included.
+  void WaitForReadAhead(bool keep);
 
   std::string path_;
   FILE* file_;
@@ -62,7 +83,8 @@ class LazPointReader {
   uint64_t table_offset_ = 0;
   uint64_t table_end_ = 0;
   laz::LazVlr vlr_;
-  std::vector<std::unique_ptr<laz::ChunkDecoder>> decoders_;  // one per chunk of a batch, made when first needed
+  // One per chunk of a batch, made when first needed; used by one batch's decoding at a time.
+  std::vector<std::unique_ptr<laz::ChunkDecoder>> decoders_;
   struct Chunk {
     uint64_t start = 0;  // file offset
     uint64_t bytes = 0;
@@ -70,12 +92,14 @@ class LazPointReader {
     uint64_t points = 0;
   };
   std::vector<Chunk> chunks_;
-  size_t next_chunk_ = 0;              // first chunk of the next batch
-  std::vector<uint8_t> batch_bytes_;   // the compressed chunks of the batch, as in the file
-  std::vector<uint8_t> batch_records_;  // their decoded records
-  size_t batch_pos_ = 0;               // records of the batch already handed out
-  size_t batch_valid_ = 0;             // records of the batch decoded before its first error (all when none)
-  std::string batch_error_;            // that error's message, empty when the whole batch decoded
+  size_t next_chunk_ = 0;  // first chunk after the current batch (and after the chunks read as stored)
+  Batch current_;
+  size_t pos_ = 0;  // records of the current batch already handed out
+  Batch ahead_;     // the read-ahead: decoding in the background (ahead_running_) or done (ahead_ready_)
+  bool ahead_running_ = false;
+  bool ahead_ready_ = false;
+  std::exception_ptr ahead_failure_;  // the read-ahead's I/O error, rethrown when the reading gets there
+  std::unique_ptr<tbb::task_group> ahead_task_;
 };
 
 }  // namespace sacfuse

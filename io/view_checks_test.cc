@@ -51,6 +51,7 @@ ColmapModel OneImageModel(const Eigen::Vector3d& translation, double focal = 500
   return m;
 }
 
+// The model, and a depth map file for each image (only its presence counts: the workspace reads no depth here).
 void WriteModel(const ColmapModel& model, bool binary, const TempDir& dir) {
   fs::create_directories(dir / "sparse");
   if (binary) {
@@ -58,6 +59,8 @@ void WriteModel(const ColmapModel& model, bool binary, const TempDir& dir) {
   } else {
     WriteColmapModelText(model, (dir / "sparse").string());
   }
+  fs::create_directories(dir / "stereo/depth_maps");
+  for (const ColmapImage& img : model.images) std::ofstream(dir / "stereo/depth_maps" / (img.name + ".geometric.bin"));
 }
 
 std::string WorkspaceError(const ColmapModel& model, bool binary) {

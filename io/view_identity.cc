@@ -5,9 +5,12 @@
 #include <cerrno>
 #include <chrono>
 #include <cstring>
+#include <exception>
 
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
 
+#include "core/error.h"
 #include "io/file_checksum.h"
 #include "io/input_file.h"
 
@@ -94,9 +97,23 @@ ViewIdentity IdentifyView(const DepthBlock& input, const View& view) {
 BlockIdentity IdentifyBlock(const DepthBlock& input) {
   const auto start = std::chrono::steady_clock::now();
   BlockIdentity block;
-  for (const View& view : input.views()) {
-    block.views.push_back(IdentifyView(input, view));
-    for (const FileIdentity* f : {&block.views.back().depth, &block.views.back().image}) {
+  const std::vector<View>& views = input.views();
+  block.views.resize(views.size());
+  // Views in parallel (each reads its files' edges): a serial share of co-registration and of the tiled plan. An
+  // unreadable file throws as a serial loop would: the first view's error.
+  std::vector<std::exception_ptr> errors(views.size());
+  tbb::parallel_for(size_t{0}, views.size(), [&](size_t i) {
+    try {
+      block.views[i] = IdentifyView(input, views[i]);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
+  for (const ViewIdentity& id : block.views) {
+    for (const FileIdentity* f : {&id.depth, &id.image}) {
       if (f->exists) block.bytes_hashed += std::min<uint64_t>(f->size, 2 * kIdentityEdgeBytes);
     }
   }
@@ -119,6 +136,23 @@ std::string DescribeViewChange(const ViewIdentity& before, const ViewIdentity& n
   if (parts & kImageInput) add(DescribeFileChange("image", before.image, now.image));
   if ((parts & kCameraInput) && before.camera_hash != now.camera_hash) add("camera changed (pose or intrinsics)");
   return out;
+}
+
+void CheckInputsUnchanged(const DepthBlock& input, const std::vector<ViewIdentity>& pinned) {
+  for (const View& view : input.views()) {
+    if (view.index >= pinned.size()) continue;
+    const ViewIdentity& before = pinned[view.index];
+    const std::string depth_path = input.DepthMapPath(view), image_path = input.ImagePath(view);
+    const auto check = [&](const char* what, const std::string& path, const FileIdentity& then) {
+      const std::string change = DescribeFileChange(what, then, IdentifyFile(path));
+      if (change.empty()) return;
+      throw InputError(path, change + " during this run (" + ViewLabel(view) + "): the fused cloud was not "
+                             "written, as it would mix the file's old and new contents; run again (the next run "
+                             "recomputes what the change affects)");
+    };
+    check("depth map", depth_path, before.depth);
+    check("image", image_path, before.image);
+  }
 }
 
 std::string ViewLabel(const View& view) { return "view " + std::to_string(view.index) + " (" + view.name + ")"; }

@@ -58,6 +58,12 @@ std::string IdentitiesDigest(const std::vector<ViewIdentity>& identities);
 // size and sampled content equal)", "camera changed (pose or intrinsics)"; several separated by "; ".
 std::string DescribeViewChange(const ViewIdentity& before, const ViewIdentity& now, unsigned parts = kAllViewInputs);
 
+// Inputs pinned for the length of a run: the views' files (depth map, image) identified now must equal `pinned`
+// (identified when the run started, by view index), else InputError naming the first changed file: "<file>:
+// depth map changed (size ..., content hash differs) during this run (view 12 (a.jpg)): the fused cloud was not
+// written ...". Called before a run writes its cloud.
+void CheckInputsUnchanged(const DepthBlock& input, const std::vector<ViewIdentity>& pinned);
+
 // "view 12 (IMG_0012.jpg)".
 std::string ViewLabel(const View& view);
 

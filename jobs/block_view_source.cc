@@ -25,7 +25,7 @@ std::unique_ptr<LoadedViews> BlockViewSource::Load(const FusionNeeds& needs) con
   out->Reserve(views.size());
   std::atomic<size_t> computed_views{0};
   // Each view fills only its own slot of the storage; the views are appended in the block's order below.
-  ForEachViewInBatches(views.size(), views_in_flight_, [&](size_t i) {
+  ForEachViewInFlight(views.size(), views_in_flight_, [&](size_t i) {
     const View& view = views[i];
     out->depths[i] = input_.ReadDepthMap(view);
     const DepthMap& depth = out->depths[i];

@@ -32,9 +32,10 @@ class SourceColours : public ViewColours {
 }  // namespace
 
 FusedViews FuseViews(const FusionMethod& method, const ViewSource& source, const MethodGeometry* geometry,
-                     FusionScope scope, PointSink& sink) {
+                     FusionScope scope, PointSink& sink, const std::function<void()>& on_loaded) {
   const FusionNeeds needs = method.needs();
   const std::unique_ptr<LoadedViews> loaded = source.Load(needs);
+  if (on_loaded) on_loaded();
   FusedViews out;
   out.view_ids = loaded->view_ids;
   out.superpixels_computed = loaded->superpixels_computed;

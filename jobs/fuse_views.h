@@ -4,6 +4,7 @@
 // core), fuse into the sink, count. A tile's points outside its core are left to the neighbouring tiles: SAC
 // judges each pixel on its own point (FusionNeeds::owns_pixels), the other methods' emitted points are judged here.
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/fusion_method.h"
@@ -25,8 +26,9 @@ struct FusedViews {
 };
 
 // `geometry`: the block's (jobs/method_geometry.h), needed by methods with FusionNeeds::block_geometry.
-// `scope.plan` and `scope.gsd_m` are filled here.
+// `scope.plan` and `scope.gsd_m` are filled here. `loaded` (optional) is called once the views are loaded, before
+// the method runs (an untiled run's stage clock, jobs/run_fusion.h).
 FusedViews FuseViews(const FusionMethod& method, const ViewSource& source, const MethodGeometry* geometry,
-                     FusionScope scope, PointSink& sink);
+                     FusionScope scope, PointSink& sink, const std::function<void()>& loaded = {});
 
 }  // namespace sacfuse

@@ -1,5 +1,7 @@
 #include "jobs/point_sinks.h"
 
+#include <chrono>
+
 namespace sacfuse {
 
 void CountingSink::Write(const FusedPoint* points, size_t count) {
@@ -22,6 +24,12 @@ void OwnedPointsSink::Write(const FusedPoint* points, size_t count) {
   }
   rejected_ += count - kept_.size();
   if (!kept_.empty()) next_.Write(kept_.data(), kept_.size());
+}
+
+void TimedSink::Write(const FusedPoint* points, size_t count) {
+  const auto start = std::chrono::steady_clock::now();
+  next_.Write(points, count);
+  seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 }  // namespace sacfuse

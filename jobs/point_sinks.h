@@ -1,5 +1,6 @@
 #pragma once
-// Point sinks that sit between a fusion method and the writer: counting, and keeping a tile's own points.
+// Point sinks that sit between a fusion method and the writer: counting, keeping a tile's own points, timing the
+// writer.
 #include <cstdint>
 #include <vector>
 
@@ -36,6 +37,19 @@ class OwnedPointsSink : public PointSink {
   PointSink& next_;
   std::vector<FusedPoint> kept_;
   uint64_t rejected_ = 0;
+};
+
+// Forwards every point and sums the wall time spent in the next sink (an untiled run's LAS/LAZ writing, which
+// happens inside the fusion stage).
+class TimedSink : public PointSink {
+ public:
+  explicit TimedSink(PointSink& next) : next_(next) {}
+  void Write(const FusedPoint* points, size_t count) override;
+  double seconds() const { return seconds_; }
+
+ private:
+  PointSink& next_;
+  double seconds_ = 0.0;
 };
 
 }  // namespace sacfuse

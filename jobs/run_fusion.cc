@@ -1,7 +1,6 @@
 #include "jobs/run_fusion.h"
 
 #include <algorithm>
-#include <chrono>
 #include <filesystem>
 #include <optional>
 #include <sstream>
@@ -10,13 +9,17 @@
 #include <spdlog/spdlog.h>
 
 #include "config/output_layout.h"
+#include "config/result_settings.h"
 #include "config/version.h"
 #include "core/error.h"
 #include "eval/eval_runner.h"
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
+#include "io/input_warnings.h"
+#include "io/json_text.h"
 #include "io/point_cloud_writer.h"
 #include "io/resource_usage.h"
+#include "io/test_pause.h"
 #include "io/view_identity.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/block_view_source.h"
@@ -27,6 +30,8 @@
 #include "jobs/las_options.h"
 #include "jobs/method_geometry.h"
 #include "jobs/open_input.h"
+#include "jobs/output_lock.h"
+#include "jobs/point_sinks.h"
 #include "jobs/run_state.h"
 #include "jobs/thread_limit.h"
 #include "jobs/tiled_run.h"
@@ -85,6 +90,19 @@ nlohmann::json SacSectionJson(const FusionStats& f, size_t superpixels_computed)
   return j;
 }
 
+// Every stage so far, in order, with the whole job's time (io/stage_clock.h).
+nlohmann::json StagesJson(const RunSummary& s) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const StageTime& t : s.stages) {
+    list.push_back({{"name", t.name}, {"wall_s", t.wall_s}, {"cpu_s", t.cpu_s}, {"peak_rss_mib", t.peak_rss_mib},
+                    {"rss_mib", t.rss_mib}});
+  }
+  nlohmann::json j = {{"threads", s.threads}, {"list", list}, {"total_wall_s", s.total_wall_seconds},
+                      {"total_cpu_s", s.total_cpu_seconds}};
+  if (s.tiles_run == 0) j["fusion_writer_wall_s"] = s.write_seconds;  // untiled: part of the "fusion" stage
+  return j;
+}
+
 void WriteRunReport(const RunSummary& s, const JobConfig& config) {
   nlohmann::json views = nlohmann::json::array();
   for (const auto& v : s.views) {
@@ -105,6 +123,7 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                             {"stage_wall_seconds",
                              {{"coregistration", s.coregistration.seconds}, {"superpixels", s.superpixel_seconds},
                               {"tiles", s.tiles_seconds}, {"merge", s.merge_seconds}, {"dsm", s.dsm.seconds}}},
+                            {"stages", StagesJson(s)},
                             {"views", views}};
   if (s.coregistration.enabled) {
     const CoregistrationOutcome& c = s.coregistration;
@@ -131,7 +150,9 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                 {"cells_filled", d.cells_filled}, {"files", d.files},
                 {"seconds", d.seconds}};
   }
-  WriteFileAtomically(s.report_path, j.dump(2) + "\n");
+  // Warnings about the input, among them every default that replaced missing input data (io/input_warnings.h).
+  j["warnings"] = InputWarningsGiven();
+  WriteFileAtomically(s.report_path, JsonText(j, 2) + "\n");
 }
 
 void CheckRerunTiles(const std::vector<std::string>& rerun_tiles, const TilePlan* plan) {
@@ -162,18 +183,21 @@ void SetFusionSummary(const FusionStats& stats, RunSummary* summary) {
 
 // Tiled (any method): per-tile files, resume, merge (jobs/tiled_run.h).
 void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
-              const std::vector<std::string>& rerun_tiles, size_t views_in_flight, RunSummary* summary) {
+              const std::vector<std::string>& rerun_tiles, size_t views_in_flight,
+              const std::vector<ViewIdentity>& pinned, OutputWriterLock& lock, StageClock* clock,
+              RunSummary* summary) {
   const BlockIdentity identity = IdentifyBlock(input);
   spdlog::info("input identities of {} views: {:.2f} MiB read and hashed in {:.3f} s ({:.0f} MiB/s)",
                identity.views.size(), static_cast<double>(identity.bytes_hashed) / (1 << 20), identity.seconds,
                identity.seconds > 0 ? static_cast<double>(identity.bytes_hashed) / (1 << 20) / identity.seconds : 0.0);
+  lock.Record(ResultSettingsHash(config), IdentitiesDigest(identity.views));  // `sacfuse tile` workers compare
   const TilePlan plan = SharedTilePlan(config, input, identity.views);
   CheckRerunTiles(rerun_tiles, &plan);
   spdlog::info("tiled {}: {} tiles of {} m ({} x {}), halo {} m, z range [{:.1f}, {:.1f}] m from {}",
                NameOf(config.fusion.method), plan.tiles.size(), config.tiling.tile_size_m, plan.grid.num_x(), plan.grid.num_y(),
                config.tiling.halo_m, plan.z_min_m, plan.z_max_m, plan.z_source);
-  const TiledRunOutcome tiled =
-      RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path, progress, views_in_flight);
+  const TiledRunOutcome tiled = RunTiledJob(config, input, plan, identity.views, rerun_tiles, summary->las_path,
+                                            progress, views_in_flight, &pinned, clock);
   SetFusionSummary(tiled.stats, summary);
   summary->superpixels_computed = tiled.superpixels_computed;
   summary->superpixel_seconds = tiled.superpixel_seconds;
@@ -196,9 +220,11 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
 // Untiled: the whole block through the same FuseViews as every tile, into one cloud writer. The fusion's memory
 // is released before the writer is closed (a COPC is built out of core in Close, within the budget).
 void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgress& progress,
-                size_t views_in_flight, RunSummary* summary) {
+                size_t views_in_flight, const std::vector<ViewIdentity>& pinned, StageClock* clock,
+                RunSummary* summary) {
   const auto& views = input.views();
   const std::unique_ptr<PointCloudWriter> writer = OpenPointCloudWriter(summary->las_path, FusedCloudOptions(config));
+  TimedSink timed_writer(*writer);
   FusedViews fused;
   bool superpixels = false;
   const std::string cache_dir = SuperpixelCacheDir(config);
@@ -211,14 +237,17 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
       for (const View& view : views) sizes.push_back(input.DepthSize(view));
       double z_min = 0, z_max = 0;
       std::string z_source;
-      BlockHeightRange(input.SceneHeights(), config.tiling, &z_min, &z_max, &z_source);
+      BlockHeightRange(input, config.tiling, &z_min, &z_max, &z_source);
       geometry = BlockMethodGeometry(input, sizes, z_min, z_max, NeighborOptionsOf(config.fusion.sac));
       spdlog::info("{}: block GSD {:.3f} m from the geometry (heights [{:.1f}, {:.1f}] m from {})",
                    NameOf(config.fusion.method), geometry.gsd_m, z_min, z_max, z_source);
     }
     const BlockViewSource source(input, config.fusion.sac.superpixels, cache_dir, progress, views_in_flight);
-    fused = FuseViews(*method, source, &geometry, FusionScope{}, *writer);
+    fused = FuseViews(*method, source, &geometry, FusionScope{}, timed_writer,
+                      [clock] { clock->Mark("load + superpixels"); });
   }
+  const double fusion_wall_s = clock->Mark("fusion").wall_s;
+  summary->write_seconds = timed_writer.seconds();
   summary->superpixels_computed = fused.superpixels_computed;
   summary->superpixel_seconds = fused.load_seconds;
   spdlog::info("{} views loaded in {:.1f} s{}", views.size(), fused.load_seconds,
@@ -226,7 +255,12 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
                                          views.size() - fused.superpixels_computed, cache_dir)
                            : std::string());
   SetFusionSummary(fused.stats, summary);
+  PauseAtTestPoint("run:before_commit");
+  CheckInputsUnchanged(input, pinned);  // inputs pinned: the last step before the cloud is finished and renamed
   writer->Close();
+  clock->Mark("write fused cloud");
+  spdlog::info("{:.1f} s of the fusion stage's {:.1f} s were spent in the writer of {}", summary->write_seconds,
+               fusion_wall_s, summary->las_path);
   summary->output_points = writer->num_points();
   // The DSM over the project area, the same extent a tiled run of the block has (the one-tile plan's area).
   if (const std::optional<DsmGrid> dsm = DsmGridOf(config, input, BuildTilePlan(input, config.tiling).grid.area())) {
@@ -242,7 +276,8 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
 
 // Scores fused.las when evaluation.reference is set (DIR/eval.json; the table into summary->eval_text), then
 // writes the HTML report once, with the scores. A scoring error is rethrown after the report (without scores).
-void ScoreAndReport(const JobConfig& config, RunSummary* summary) {
+// Marks "scoring" and "HTML report" on `clock`.
+void ScoreAndReport(const JobConfig& config, StageClock* clock, RunSummary* summary) {
   const ReportOptions report = JobReportOptions(config);
   if (!config.evaluation.reference.empty()) {
     try {
@@ -253,20 +288,29 @@ void ScoreAndReport(const JobConfig& config, RunSummary* summary) {
       WriteHtmlReportOrWarn(config, report);
       throw;
     }
+    clock->Mark("scoring");
   }
   WriteHtmlReportOrWarn(config, report);  // DIR/report/index.html; a failure is only a warning
+  clock->Mark("HTML report");
+}
+
+// The stage list and totals so far into the summary.
+void RecordStages(const StageClock& clock, RunSummary* summary) {
+  summary->stages = clock.stages();
+  summary->total_wall_seconds = clock.TotalWallSeconds();
+  summary->total_cpu_seconds = clock.TotalCpuSeconds();
 }
 
 }  // namespace
 
-RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
+RunSummary RunFusionJob(const JobConfig& given, OutputWriterLock& lock, const RunProgress& progress,
                         const std::vector<std::string>& rerun_tiles) {
   ValidateJobConfig(given);
   JobConfig config = given;
-  const auto start = std::chrono::steady_clock::now();
-  const double cpu_start = ProcessCpuSeconds();
+  StageClock clock;
   std::filesystem::create_directories(config.output.dir);
-  RemoveTemporaryFilesOfKilledRuns(config);
+  RemoveTemporaryFilesOfGoneProcesses(config, &lock);
+  PauseAtTestPoint("run:started");
 
   RunSummary summary;
   summary.method = NameOf(config.fusion.method);
@@ -276,10 +320,15 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
   WriteFileAtomically(summary.effective_config_path, DumpJobConfig(config, true));
 
   std::unique_ptr<DepthBlock> block = OpenNonEmptyInput(config.input, "fuse", config.crs);
+  // The views' files as this run first sees them: checked again before the cloud is written (inputs pinned).
+  const std::vector<ViewIdentity> pinned = IdentifyBlock(*block).views;
+  clock.Mark("open input");
   TilingDecision decision;
   config = ResolveTiling(given, *block, &decision);
+  clock.Mark("tiling decision");
   const ThreadLimit thread_limit(EffectiveThreads(config));
   block = WithCoregisteredPoses(config, std::move(block), &summary.coregistration);
+  if (summary.coregistration.enabled) clock.Mark("co-registration");
   const DepthBlock& input = *block;
   const auto& views = input.views();
   summary.threads = EffectiveThreads(config);
@@ -305,19 +354,33 @@ RunSummary RunFusionJob(const JobConfig& given, const RunProgress& progress,
     spdlog::info("fusion method: {} (comparison method; no superpixels)", NameOf(config.fusion.method));
   }
   if (tiled) {
-    RunTiled(config, input, progress, rerun_tiles, decision.views_in_flight, &summary);
+    RunTiled(config, input, progress, rerun_tiles, decision.views_in_flight, pinned, lock, &clock, &summary);
   } else {
-    RunUntiled(config, input, progress, decision.views_in_flight, &summary);
+    lock.Record(ResultSettingsHash(config), "");
+    RunUntiled(config, input, progress, decision.views_in_flight, pinned, &clock, &summary);
   }
 
-  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  summary.cpu_seconds = ProcessCpuSeconds() - cpu_start;
+  summary.wall_seconds = clock.TotalWallSeconds();
+  summary.cpu_seconds = clock.TotalCpuSeconds();
   summary.peak_rss_mib = PeakRssMiB();
   if (!summary.failed_tiles.empty()) return summary;  // the previous run's outputs stay (jobs/run_state.h)
+  RemoveOtherFormatCloud(config);
+  RecordStages(clock, &summary);
   WriteRunReport(summary, config);
-  ScoreAndReport(config, &summary);
+  clock.Mark("run report");
   spdlog::info("wrote {} points to {} in {:.1f} s (peak RSS {:.0f} MiB)", summary.output_points, summary.las_path,
                summary.wall_seconds, summary.peak_rss_mib);
+  try {
+    ScoreAndReport(config, &clock, &summary);
+  } catch (...) {
+    RecordStages(clock, &summary);
+    WriteRunReport(summary, config);  // with the stages up to the scoring error
+    throw;
+  }
+  RecordStages(clock, &summary);
+  WriteRunReport(summary, config);  // again, with the times of scoring and the HTML report
+  spdlog::info("stages on {} threads:\n{}", summary.threads,
+               FormatStageTable(summary.stages, summary.total_wall_seconds, summary.total_cpu_seconds));
   return summary;
 }
 

@@ -14,7 +14,9 @@
 #include "core/sac_fusion.h"
 #include "jobs/coregistered_block.h"
 #include "jobs/dsm_product.h"
+#include "jobs/output_lock.h"
 #include "io/las_writer.h"
+#include "io/stage_clock.h"
 
 namespace sacfuse {
 
@@ -50,6 +52,14 @@ struct RunSummary {
   double superpixel_seconds = 0.0;  // the superpixel (and colour cache) pass; untiled: all loading
   double tiles_seconds = 0.0;       // tiled: the tile stage
   double merge_seconds = 0.0;       // tiled: merging the tiles into fused.las
+  double write_seconds = 0.0;       // untiled: wall time inside the LAS/LAZ writer during the fusion stage
+  // Every stage of the job in the order it ran, with wall and CPU seconds (io/stage_clock.h): opening the input,
+  // the tiling decision, co-registration, then untiled "load + superpixels", "fusion", "write fused cloud", or
+  // tiled "tile plan", "superpixels", "tiles", "merge"; then "run report", "scoring" (evaluation.reference set) and
+  // "HTML report". wall_seconds / cpu_seconds above end with the fused cloud; total_* include every stage.
+  std::vector<StageTime> stages;
+  double total_wall_seconds = 0.0;
+  double total_cpu_seconds = 0.0;
   std::string eval_text;            // evaluation.reference set: the score table and F1 lines (eval/eval_runner.h)
   DsmOutcome dsm;                   // output.dsm: DIR/dsm.tif (jobs/dsm_product.h)
 };
@@ -57,14 +67,17 @@ struct RunSummary {
 // Called as work proceeds: stage name, units done, units total.
 using RunProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
-// Runs one job. Throws InputError/ConfigError/Error with context; never leaves a partial fused.las, and replaces
-// fused.las, run_report.json, eval.json and the HTML report only when it has the new ones (a run with failed tiles
-// writes none of them; a scoring error is thrown after the report is written without scores). Deletes the
-// temporary files of killed runs first (jobs/run_state.h).
+// Runs one job; the caller holds the output folder's writer lock (jobs/output_lock.h), which records the job's
+// settings hash and inputs digest. Throws InputError/ConfigError/Error with context; never leaves a partial
+// fused.las, and replaces fused.las, run_report.json, eval.json and the HTML report only when it has the new ones
+// (a run with failed tiles writes none of them; a scoring error is thrown after the report is written without
+// scores). Deletes the temporary files of gone processes first (jobs/output_lock.h). The views' files are pinned:
+// one changed during the run fails it before the cloud is written (InputError naming the file); the other
+// format's cloud of an earlier run is removed once the new one is written.
 // Tiled runs resume (jobs/tiled_run.h): `rerun_tiles` names tiles to recompute even when done (ConfigError
 // naming any id that is not a tile with views, or when the run is not tiled); a tile that fails is listed in
 // failed_tiles and the job returns without merging.
-RunSummary RunFusionJob(const JobConfig& config, const RunProgress& progress = {},
+RunSummary RunFusionJob(const JobConfig& config, OutputWriterLock& lock, const RunProgress& progress = {},
                         const std::vector<std::string>& rerun_tiles = {});
 
 }  // namespace sacfuse

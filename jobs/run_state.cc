@@ -12,26 +12,14 @@
 #include <spdlog/spdlog.h>
 
 #include "io/atomic_file.h"
+#include "io/json_text.h"
+#include "io/process_identity.h"
 #include "config/output_layout.h"
-#include "tiles/tile_claim.h"
+#include "jobs/output_lock.h"
 
 namespace sacfuse {
 namespace fs = std::filesystem;
 namespace {
-
-int64_t NowNs() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch())
-      .count();
-}
-
-std::string UtcText(int64_t unix_ns) {
-  const std::time_t t = static_cast<std::time_t>(unix_ns / 1000000000);
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char text[32];
-  std::strftime(text, sizeof(text), "%Y-%m-%d %H:%M:%S UTC", &tm);
-  return text;
-}
 
 void WriteRunState(const JobConfig& config, const RunState& s) {
   const nlohmann::json j = {{"status", s.status},
@@ -43,7 +31,7 @@ void WriteRunState(const JobConfig& config, const RunState& s) {
                             {"pid", s.pid},
                             {"host", s.host},
                             {"last_success_unix_ns", s.last_success_unix_ns}};
-  WriteFileAtomically(RunStatePath(config), j.dump(2) + "\n");
+  WriteFileAtomically(RunStatePath(config), JsonText(j, 2) + "\n");
 }
 
 }  // namespace
@@ -72,7 +60,7 @@ std::optional<RunState> MarkRunStarted(const JobConfig& config) {
   const std::optional<RunState> previous = ReadRunState(config);
   if (previous) s.last_success_unix_ns = previous->last_success_unix_ns;
   s.status = "running";
-  s.started_unix_ns = NowNs();
+  s.started_unix_ns = NowUnixNs();
   s.pid = static_cast<int64_t>(::getpid());
   s.host = ThisHostName();
   WriteRunState(config, s);
@@ -91,7 +79,7 @@ void MarkRunRefused(const JobConfig& config, const std::optional<RunState>& prev
 void MarkRunEnded(const JobConfig& config, bool succeeded, const std::string& error) {
   RunState s = ReadRunState(config).value_or(RunState{});
   s.status = succeeded ? "succeeded" : "failed";
-  s.ended_unix_ns = NowNs();
+  s.ended_unix_ns = NowUnixNs();
   s.error = succeeded ? "" : error;
   if (succeeded) s.last_success_unix_ns = s.ended_unix_ns;
   WriteRunState(config, s);
@@ -105,7 +93,8 @@ std::string DescribeRunState(const JobConfig& config, bool* failed) {
   std::string text;
   if (s->status == "failed") {
     text = "last run FAILED at " + UtcText(s->ended_unix_ns) + ": " + s->error;
-  } else if (ProcessIsGone(s->host, s->pid)) {  // a "running" state whose process is gone was killed
+  } else if (ProcessIsGone(s->host, s->pid) || OutputWriterIsGone(config, s->host, s->pid)) {
+    // A "running" state whose process is gone (this host: its pid; any host: its lock released) was killed.
     text = "last run (pid " + std::to_string(s->pid) + ", started " + UtcText(s->started_unix_ns) +
            ") was INTERRUPTED: its process is gone";
   } else {
@@ -125,28 +114,6 @@ std::string DescribeRunState(const JobConfig& config, bool* failed) {
     text += "\n" + name + " was written by this run before it failed";
   }
   return text;
-}
-
-size_t RemoveTemporaryFilesOfKilledRuns(const JobConfig& config) {
-  const std::string tiles_dir = TilesDir(config);
-  if (AnyLiveTileClaim(tiles_dir, config.tiling.claim_timeout_s)) {
-    spdlog::info("other workers hold tile claims: leaving temporary files alone");
-    return 0;
-  }
-  size_t removed = 0;
-  const auto remove = [&](const std::string& dir, bool recursive) {
-    for (const std::string& path : RemoveTemporaryFiles(dir, recursive)) {
-      spdlog::info("removed {} (left by an interrupted run)", path);
-      ++removed;
-    }
-  };
-  remove(config.output.dir, false);
-  remove(tiles_dir, false);
-  remove(ReportDir(config), false);
-  remove(DsmBlocksDir(config), false);
-  remove(SuperpixelCacheDir(config), true);
-  if (removed > 0) spdlog::info("removed {} temporary files left by an interrupted run", removed);
-  return removed;
 }
 
 }  // namespace sacfuse

@@ -35,9 +35,4 @@ void MarkRunEnded(const JobConfig& config, bool succeeded, const std::string& er
 // *failed (may be null) is set when the last run failed or was interrupted. "" when there is no state.
 std::string DescribeRunState(const JobConfig& config, bool* failed = nullptr);
 
-// Deletes the temporary files of killed processes (io/atomic_file.h: "*.tmp-<pid>-<n>") in the job's output
-// folder, its tiles/ and report/ folders and its superpixel cache (recursive), logging each; only when no live
-// worker holds a tile claim. Returns how many were removed.
-size_t RemoveTemporaryFilesOfKilledRuns(const JobConfig& config);
-
 }  // namespace sacfuse

@@ -56,7 +56,7 @@ size_t EnsureTiledSuperpixels(const DepthBlock& input, const TilePlan& plan, con
     for (const TileViewWindow& tw : only_tile->views) todo.push_back(tw.view);
   }
   std::atomic<size_t> computed{0};
-  ForEachViewInBatches(todo.size(), views_in_flight, [&](size_t i) {
+  ForEachViewInFlight(todo.size(), views_in_flight, [&](size_t i) {
     const size_t v = todo[i];
     if (EnsureViewCaches(input, views[v], plan.depth_sizes[v], options.superpixels, superpixel_cache_dir,
                          with_superpixels, inputs.at(v))) {

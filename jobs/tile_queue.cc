@@ -1,6 +1,7 @@
 #include "jobs/tile_queue.h"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 
 #include "config/output_layout.h"
@@ -22,7 +23,9 @@ namespace fs = std::filesystem;
 namespace {
 
 // Opens the workspace and resolves an automatic tile size into *resolved; throws ConfigError for untiled jobs.
-std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* resolved) {
+// `before_coregistration` (may be empty) sees the resolved config before anything is written to DIR.
+std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* resolved,
+                                           const std::function<void(const JobConfig&)>& before_coregistration = {}) {
   ValidateJobConfig(config);
   std::unique_ptr<DepthBlock> input = OpenNonEmptyInput(config.input, "fuse", config.crs);
   *resolved = ResolveTiling(config, *input);
@@ -30,6 +33,7 @@ std::unique_ptr<DepthBlock> OpenTiledInput(const JobConfig& config, JobConfig* r
     throw ConfigError("not a tiled run: tiling.tile_size_m = 0 and the whole block fits in resources.memory_gb, so "
                       "it runs untiled (`sacfuse run`); set tiling.tile_size_m > 0 to cut it into tiles");
   }
+  if (before_coregistration) before_coregistration(*resolved);
   const ThreadLimit thread_limit(EffectiveThreads(*resolved));
   return WithCoregisteredPoses(*resolved, std::move(input));
 }
@@ -44,11 +48,18 @@ TilePlan PlanJob(const JobConfig& given, std::string* plan_path) {
   return SharedTilePlan(config, *input, IdentifyBlock(*input).views, plan_path);
 }
 
-TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
+TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id, const OutputWorkerLock& /*held*/) {
+  RemoveTemporaryFilesOfGoneProcesses(given, nullptr);
   JobConfig config;
-  const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config);
+  // A writer of another job in DIR: refused before this worker writes anything (coregistration.json, plan.json).
+  const auto check_settings = [](const JobConfig& resolved) {
+    const std::optional<OutputWriter> writer = LiveOutputWriter(resolved);
+    if (writer) CheckWorkerMatchesWriter(resolved, ResultSettingsHash(resolved), writer->inputs_digest);
+  };
+  const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config, check_settings);
   const ThreadLimit thread_limit(EffectiveThreads(config));
   const BlockIdentity identity = IdentifyBlock(*input);
+  CheckWorkerMatchesWriter(config, ResultSettingsHash(config), IdentitiesDigest(identity.views));
   const TilePlan plan = SharedTilePlan(config, *input, identity.views);
   const PlannedTile* tile = nullptr;
   for (const PlannedTile& t : plan.tiles) {
@@ -70,17 +81,19 @@ TileWorkOutcome RunOneTile(const JobConfig& given, const std::string& id) {
   return WorkOnTile(job, *tile, /*forced=*/false, nullptr, fuser);
 }
 
-MergeJobOutcome MergeJob(const JobConfig& given) {
+MergeJobOutcome MergeJob(const JobConfig& given, OutputWriterLock& lock) {
+  RemoveTemporaryFilesOfGoneProcesses(given, &lock);
   JobConfig config;
   const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config);
   const BlockIdentity identity = IdentifyBlock(*input);
+  lock.Record(ResultSettingsHash(config), IdentitiesDigest(identity.views));
   const TilePlan plan = SharedTilePlan(config, *input, identity.views);
   MergeJobOutcome out;
   out.fused_las_path = FusedLasPath(config);
   out.missing = MissingTiles(config, *input, plan, identity.views);
   if (!out.missing.empty()) return out;
-  RemoveTemporaryFilesOfKilledRuns(config);
-  out.merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), out.fused_las_path);
+  out.merged = MergeTiledRun(config, *input, plan, identity.views, FusedCloudOptions(config, plan), out.fused_las_path);
+  RemoveOtherFormatCloud(config);
   if (const std::optional<DsmGrid> dsm = DsmGridOf(config, *input, plan.grid.area())) {
     out.dsm = AssembleTiledDsm(config, plan, *dsm);
   } else {

@@ -10,6 +10,7 @@
 
 #include "config/job_config.h"
 #include "jobs/dsm_product.h"
+#include "jobs/output_lock.h"
 #include "tiles/tile_merge.h"
 #include "tiles/tile_plan.h"
 #include "tiles/tile_worker.h"
@@ -22,8 +23,10 @@ TilePlan PlanJob(const JobConfig& config, std::string* plan_path = nullptr);
 
 // Computes tile `id` (a tile with views of the shared plan, else ConfigError) unless it is done or claimed by a
 // live worker (tiles/tile_worker.h); the claim is removed when the tile is done or failed. DIR/fused.las stays
-// (the previous merge) until `sacfuse merge` replaces it.
-TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id);
+// (the previous merge) until `sacfuse merge` replaces it. The caller holds the workers' shared lock; temporary
+// files of gone processes on this host are removed first, and a worker whose config hash or inputs differ from
+// those of a run or merge writing DIR refuses (Error; jobs/output_lock.h CheckWorkerMatchesWriter).
+TileWorkOutcome RunOneTile(const JobConfig& config, const std::string& id, const OutputWorkerLock& lock);
 
 struct MergeJobOutcome {
   std::vector<std::string> missing;  // not empty: nothing was merged
@@ -32,8 +35,9 @@ struct MergeJobOutcome {
   DsmOutcome dsm;  // output.dsm: the DSM assembled from the tiles (jobs/dsm_product.h)
 };
 
-// `sacfuse merge`: ConfigError unless the config is a tiled run. Deletes the temporary files (and COPC work
-// folders) a killed run or merge left, as `sacfuse run` does (jobs/run_state.h), unless a worker holds a claim.
-MergeJobOutcome MergeJob(const JobConfig& config);
+// `sacfuse merge`: ConfigError unless the config is a tiled run. The caller holds the writer lock (recorded with
+// the job's hash and inputs digest); temporary files (and COPC work folders) of gone processes are removed first;
+// the other formats' clouds of an earlier run are removed after the merge.
+MergeJobOutcome MergeJob(const JobConfig& config, OutputWriterLock& lock);
 
 }  // namespace sacfuse

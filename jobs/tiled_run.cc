@@ -8,6 +8,7 @@
 #include "config/output_layout.h"
 #include "config/result_settings.h"
 #include "core/error.h"
+#include "io/test_pause.h"
 #include "jobs/auto_tiling.h"
 #include "jobs/cluster_table_cache.h"
 #include "jobs/fusion_methods.h"
@@ -47,7 +48,11 @@ void MakeViewCaches(const JobConfig& config, const DepthBlock& input, const Tile
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, const std::string& fused_las_path,
-                            const StageProgress& progress, size_t views_in_flight) {
+                            const StageProgress& progress, size_t views_in_flight,
+                            const std::vector<ViewIdentity>* pinned, StageClock* clock) {
+  const auto mark = [clock](const char* stage) {
+    if (clock != nullptr) clock->Mark(stage);
+  };
   const FusionNeeds needs = MakeFusionMethod(config.fusion)->needs();
   if (needs.consistency_graphs) {
     throw ConfigError("fusion.correspondence = dense: not supported by tiled runs yet");
@@ -64,8 +69,10 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   out.tiles_skipped = work.tiles_skipped;
   out.tiles_rerun_for_inputs = work.rerun_for_inputs;
   RecordTiledRunState(config, plan, job.cloud.las, work.todo.size());
+  mark("tile plan");
   if (!work.todo.empty()) {
     MakeViewCaches(config, input, plan, identities, needs.superpixels, work, progress, views_in_flight, &out);
+    mark("superpixels");
   }
 
   ClusterTableCache cluster_cache(ClusterCacheBudgetBytes(MemoryBudgetBytes(config.resources.memory_gb)));
@@ -75,11 +82,16 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   out.tiles_computed = tiles.tiles_computed;
   out.failed = std::move(tiles.failed);
   out.tiles_seconds = tiles.seconds;
+  mark("tiles");
   if (!out.failed.empty()) return out;
 
+  PauseAtTestPoint("run:before_merge");
+  if (pinned != nullptr) CheckInputsUnchanged(input, *pinned);
   const auto merge_start = std::chrono::steady_clock::now();
-  const MergeResult merged = MergeTiledRun(config, plan, FusedCloudOptions(config, plan), fused_las_path, progress);
+  const MergeResult merged =
+      MergeTiledRun(config, input, plan, identities, FusedCloudOptions(config, plan), fused_las_path, progress);
   out.merge_seconds = SecondsSince(merge_start);
+  mark("merge");
   out.merged = true;
   out.merged_points = merged.points;
   out.points_per_view = merged.points_per_view;

@@ -7,8 +7,9 @@
 //   3. the tiles on worker threads within the memory budget (tiles/tile_scheduler.h RunTileWork), each through
 //      the tile worker (tiles/tile_worker.h) with this job's fusion step (jobs/tile_fusion.h MethodTileFuser); a
 //      tile that throws gets a failed marker and the others go on;
-//   4. when every tile with views is done, the tile files merged in grid order into DIR/fused.las
-//      (tiles/tile_merge.h), and the tiles' DSM windows assembled into DIR/dsm.tif (jobs/dsm_product.h).
+//   4. when every tile with views is done and no input file changed since the run started, the tile files merged
+//      in grid order into DIR/fused.las (tiles/tile_merge.h: every tile's marker checked against this job), and the
+//      tiles' DSM files assembled into DIR/dsm.tif (jobs/dsm_product.h).
 // The caller deleted leftover temporary files first (jobs/run_state.h).
 #include <cstdint>
 #include <string>
@@ -19,6 +20,7 @@
 #include "core/fusion_stats.h"
 #include "io/depth_block.h"
 #include "io/las_writer.h"
+#include "io/stage_clock.h"
 #include "io/view_identity.h"
 #include "jobs/dsm_product.h"
 #include "tiles/tile_plan.h"
@@ -49,10 +51,14 @@ struct TiledRunOutcome {
 // recorded inputs differ from `identities` (the views' current ones; logged with the views that changed).
 // fused_las_path is replaced (by a rename) only by a complete merge: a run that fails leaves the previous one.
 // Every cloud is written with jobs/las_options.h (tiles: TileCloudOptions; the merged cloud: FusedCloudOptions).
-// `views_in_flight`: views the superpixel pass prepares at once (TilingDecision::views_in_flight).
+// `views_in_flight`: views the superpixel pass prepares at once (TilingDecision::views_in_flight). `pinned` (may be
+// null): the views' files when the run started; one that changed since fails the run before the merge (InputError
+// naming it, io/view_identity.h CheckInputsUnchanged).
+// `clock` (optional): marks the stages "tile plan" (stage 1), "superpixels", "tiles" and "merge" as they end.
 TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
                             const std::vector<ViewIdentity>& identities,
                             const std::vector<std::string>& rerun_ids, const std::string& fused_las_path,
-                            const StageProgress& progress = {}, size_t views_in_flight = 1);
+                            const StageProgress& progress = {}, size_t views_in_flight = 1,
+                            const std::vector<ViewIdentity>* pinned = nullptr, StageClock* clock = nullptr);
 
 }  // namespace sacfuse

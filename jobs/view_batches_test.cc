@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 namespace sacfuse {
 namespace {
@@ -16,7 +17,7 @@ void CheckBatches(size_t count, size_t in_flight) {
   std::vector<std::atomic<int>> calls(count);
   std::atomic<int> running{0}, most{0};
   std::vector<size_t> finished;
-  ForEachViewInBatches(count, in_flight, [&](size_t i) {
+  ForEachViewInFlight(count, in_flight, [&](size_t i) {
     const int now = ++running;
     int seen = most.load();
     while (now > seen && !most.compare_exchange_weak(seen, now)) {
@@ -41,8 +42,28 @@ TEST(ViewBatchesTest, EveryViewOnceAndAtMostInFlightAtOnce) {
   CheckBatches(5, 0);  // 0 means one at a time
 }
 
+// No batches: while the first view is still being prepared, the others go on one after another in the other slot
+// (in batches of two, view 2 would wait for view 0).
+TEST(ViewBatchesTest, ASlowViewHoldsUpNoOtherView) {
+  if (tbb::this_task_arena::max_concurrency() < 2) GTEST_SKIP() << "needs two threads";
+  std::atomic<int> others_done{0};
+  bool others_finished_meanwhile = false;
+  ForEachViewInFlight(6, 2, [&](size_t i) {
+    if (i != 0) {
+      ++others_done;
+      return;
+    }
+    const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (others_done < 5 && std::chrono::steady_clock::now() < give_up) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    others_finished_meanwhile = others_done == 5;
+  });
+  EXPECT_TRUE(others_finished_meanwhile);
+}
+
 TEST(ViewBatchesTest, AViewsExceptionReachesTheCaller) {
-  EXPECT_THROW(ForEachViewInBatches(6, 2,
+  EXPECT_THROW(ForEachViewInFlight(6, 2,
                                     [](size_t i) {
                                       if (i == 3) throw std::runtime_error("view 3 unreadable");
                                     }),

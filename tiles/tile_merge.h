@@ -27,18 +27,27 @@ struct MergeResult {
 
 // Merges `tile_las_paths` (in the order given) into `out_path`; returns the points written. `options.offset`
 // must be set. Throws InputError naming a tile whose scale or offset differs, or that cannot be read; leaves no
-// partial output.
+// partial output. `before_commit` (may be empty) runs when every point is written, before the file is renamed into
+// place; what it throws leaves no output.
 uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
                       const CloudFileOptions& options,
-                      const std::function<void(size_t done, size_t total)>& progress = {});
+                      const std::function<void(size_t done, size_t total)>& progress = {},
+                      const std::function<void()>& before_commit = {});
 
 // Streams the done tiles' files, grid order, into `fused_las_path`; `cloud.las.offset` must be the plan's shared
-// offset (tiles/tile_manifest.h). Then writes DIR/tiles.vpc over the tile files. Throws Error when a tile with
-// views has no done marker.
-MergeResult MergeTiledRun(const JobConfig& config, const TilePlan& plan, const CloudFileOptions& cloud,
+// offset (tiles/tile_manifest.h). Every tile with views must be done for THIS job: its marker carries the config's
+// result-settings hash and the tile's inputs from `identities` (by view index) and its file's size and header
+// agree (tiles/tile_marker.h VerifyTileDone without the checksum), else Error naming the tile and why, before
+// anything is written; after the points are written and before the cloud is renamed into place, every marker
+// must still be the one checked (another process rewriting a tile meanwhile fails the merge, naming it), then
+// `before_commit` runs (may be empty; what it throws leaves no cloud). Then writes DIR/tiles.vpc over the tile
+// files.
+MergeResult MergeTiledRun(const JobConfig& config, const DepthBlock& input, const TilePlan& plan,
+                          const std::vector<ViewIdentity>& identities, const CloudFileOptions& cloud,
                           const std::string& fused_las_path,
                           const std::function<void(const std::string& stage, size_t done, size_t total)>& progress =
-                              {});
+                              {},
+                          const std::function<void()>& before_commit = {});
 
 // Tiles with views whose done marker does not verify (full checksum, and inputs against `identities`, by view
 // index), grid order.

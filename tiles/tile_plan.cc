@@ -148,8 +148,10 @@ TilePlan SharedTilePlan(const JobConfig& config, const DepthBlock& input, const 
     spdlog::info("plan: the inputs changed since {} was written: re-planned", path);
   } else if (same_settings) {
     nlohmann::json mine = nlohmann::json::parse(text);
-    mine.erase("version");
-    existing.erase("version");
+    for (const char* label : {"version", "z_source"}) {  // labels: a plan of an older version names them otherwise
+      mine.erase(label);
+      existing.erase(label);
+    }
     if (mine != existing) {
       throw Error(path + ": the shared plan of this config differs from the plan built here (inputs changed?); "
                          "delete it to re-plan");

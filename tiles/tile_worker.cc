@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "io/resource_usage.h"
+#include "io/test_pause.h"
 #include "tiles/memory_model.h"
 #include "tiles/tile_claim.h"
 
@@ -59,13 +60,17 @@ std::vector<std::string> ProductSuffixes(const TileJob& job) {
 }
 
 void CheckTileFitsBudget(const PlannedTile& tile, uint64_t bytes, const JobConfig& config) {
-  const uint64_t pool = TileMemoryPoolBytes(MemoryBudgetBytes(config.resources.memory_gb));
+  const uint64_t budget = MemoryBudgetBytes(config.resources.memory_gb);
+  const uint64_t pool = TileMemoryPoolBytes(budget);
   if (bytes <= pool) return;
-  throw Error(fmt::format("tile {}: out-of-memory guard: its {} views' windows need ~{:.2f} GiB, more than the "
-                          "{:.2f} GiB that resources.memory_gb = {} leaves for tiles; use a smaller "
-                          "tiling.tile_size_m (or 0 = sized from the budget) or raise resources.memory_gb",
-                          tile.id, tile.views.size(), static_cast<double>(bytes) / kGiB,
-                          static_cast<double>(pool) / kGiB, config.resources.memory_gb));
+  const std::string left = pool > 0 ? "the " + ByteSizeText(pool) : "nothing";
+  throw Error(fmt::format("tile {}: out-of-memory guard: its {} views' windows need ~{}, more than {} that "
+                          "resources.memory_gb = {} ({}) leaves for tiles after {} for the process and {} for "
+                          "shared superpixel cluster tables; use a smaller tiling.tile_size_m (or 0 = sized from "
+                          "the budget) or raise resources.memory_gb",
+                          tile.id, tile.views.size(), ByteSizeText(bytes), left, config.resources.memory_gb,
+                          ByteSizeText(budget), ByteSizeText(kProcessBaseBytes),
+                          ByteSizeText(ClusterCacheBudgetBytes(budget))));
 }
 
 TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool forced, MemoryAdmission* admission,
@@ -80,6 +85,7 @@ TileWorkOutcome WorkOnTile(const TileJob& job, const PlannedTile& tile, bool for
     return out;
   }
   TileClaimGuard guard(job.tiles_dir, tile.id, claim.token);
+  PauseAtTestPoint("tile:claimed");
   if (claim.took_over) spdlog::warn("tile {}: took over a stale claim", tile.id);
   const TileInputs inputs = TileInputsOf(tile, job.input.views(), job.identities);
   if (!forced && VerifyTileDone(job.tiles_dir, tile.id, job.hash, true, &inputs).done) {

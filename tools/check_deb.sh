@@ -78,7 +78,7 @@ echo "      installed: $(in_root dpkg-query -W -f='${Package} ${Version}, ${Inst
   "$(du -smx "$root" | cut -f1) MiB"
 step "sacfuse --version" in_root sacfuse --version && echo "      $(in_root sacfuse --version)"
 step "man page and docs installed" in_root sh -c 'test -s /usr/share/man/man1/sacfuse.1.gz &&
-  test -s /usr/share/doc/sacfuse/README.md && test -s /usr/share/doc/sacfuse/LICENSE &&
+  test -s /usr/share/doc/sacfuse/README.md && test -s /usr/share/doc/sacfuse/copyright &&
   test -s /usr/share/doc/sacfuse/docs/configuration.md && test -s /usr/share/doc/sacfuse/docs/cli.md' || true
 step "sacfuse simulate --preset tiny" in_root sacfuse simulate --preset tiny --out /tmp/block || true
 step "sacfuse run" in_root sacfuse run /tmp/block/sacfuse.yaml || true

@@ -97,6 +97,14 @@ BackgroundCommand::BackgroundCommand(const std::string& command, const std::vect
   }
 }
 
+int64_t GonePid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
+
 BackgroundCommand::~BackgroundCommand() {
   if (pid_ > 0 && !Finished()) {
     ::kill(pid_, SIGKILL);

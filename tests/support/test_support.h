@@ -1,5 +1,6 @@
 #pragma once
 // Helpers for tests: a per-test temporary directory and the location of ../shared research data.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -81,6 +82,10 @@ class BackgroundCommand {
   bool done_ = false;
   TempDir dir_;  // holds the output file
 };
+
+// The pid of a child process that has exited and been reaped: a pid that is not alive (for tests of clean-ups that
+// keep files of live writers only).
+int64_t GonePid();
 
 // Waits until `path` exists; false after `timeout_s`.
 bool WaitForFile(const std::filesystem::path& path, double timeout_s = 120);

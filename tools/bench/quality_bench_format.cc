@@ -139,6 +139,7 @@ std::string FormatBenchMarkdown(const BenchDocument& d) {
      << "- COLMAP: " << (h.colmap_version.empty() ? h.colmap_note : h.colmap_version) << "\n"
      << "- seed " << d.options.seed << ", preset " << d.options.preset << ", error scales";
   for (const double s : d.options.error_scales) md << " " << Number(s);
+  if (d.options.depth != "synthetic") md << ", depth maps " << d.options.depth << " (simulate --depth)";
   md << "\n";
   for (const SkippedBlock& s : d.skipped) md << "- skipped block " << s.scene << ": " << s.reason << "\n";
 
@@ -219,6 +220,7 @@ json BenchToJson(const BenchDocument& d) {
   j["options"] = {{"seed", d.options.seed},
                   {"preset", d.options.preset},
                   {"error_scales", d.options.error_scales},
+                  {"depth", d.options.depth},
                   {"methods", d.options.methods},
                   {"ablations", d.options.ablations},
                   {"ablation_preset", d.options.ablation_preset},
@@ -231,7 +233,8 @@ json BenchToJson(const BenchDocument& d) {
     blocks.push_back({{"id", b.id}, {"scene", b.scene}, {"status", "used"}, {"preset", b.preset},
                       {"from_las", b.from_las}, {"area_m", b.area_m}, {"seed", b.seed},
                       {"error_scale", b.error_scale}, {"no_errors", b.no_errors},
-                      {"no_pose_errors", b.no_pose_errors}, {"consistency_graphs", b.consistency_graphs}});
+                      {"no_pose_errors", b.no_pose_errors}, {"consistency_graphs", b.consistency_graphs},
+                      {"depth", b.depth}});
   }
   for (const SkippedBlock& s : d.skipped) blocks.push_back({{"scene", s.scene}, {"status", "skipped"}, {"reason", s.reason}});
   j["blocks"] = blocks;

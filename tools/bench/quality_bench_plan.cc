@@ -70,6 +70,7 @@ std::string BlockId(const BlockSpec& b) {
   }
   if (b.consistency_graphs) id += "-cg";
   if (!b.normal_maps) id += "-nonormals";
+  if (b.depth != "synthetic") id += "-" + b.depth;
   return id;
 }
 
@@ -142,6 +143,7 @@ void AddMainRows(const QualityBenchOptions& o, const std::string& scene, const B
     BlockSpec block = base;
     block.error_scale = scale;
     block.normal_maps = !o.colmap_path.empty();
+    block.depth = o.depth;
     const std::string id = b->Block(block);
     for (const std::string& method : o.methods) {
       RowSpec row = MakeRow("main", scene, scale, method, id, RowKind::kSacfuse, method);
@@ -267,6 +269,7 @@ std::vector<std::string> BlockSpec::SimulateArgs(const std::string& block_dir) c
   }
   if (consistency_graphs) args.push_back("--consistency-graphs");
   if (!normal_maps) args.push_back("--no-normal-maps");
+  if (depth != "synthetic") args.insert(args.end(), {"--depth", depth});
   return args;
 }
 
@@ -296,6 +299,9 @@ BenchPlan BuildBenchPlan(const QualityBenchOptions& o) {
   if (o.error_scales.empty()) throw ConfigError("--error-scales: empty; give at least one scale such as 1");
   for (const double s : o.error_scales) {
     if (!(s > 0)) throw ConfigError("--error-scales = " + FormatNumber(s) + ": every scale must be > 0");
+  }
+  if (o.depth != "synthetic" && o.depth != "sgbm") {
+    throw ConfigError("--depth = '" + o.depth + "': unknown; choose from synthetic, sgbm");
   }
   SimPreset(o.preset);           // throws ConfigError for an unknown preset
   SimPreset(o.ablation_preset);

@@ -16,6 +16,9 @@ struct QualityBenchOptions {
   std::string out_dir;                      // everything goes below it: blocks/, rows/, bench.md, bench.json
   std::vector<std::string> blocks;          // catalogue names (city, zurich, ...); empty = DefaultBlockNames()
   std::vector<double> error_scales = {1.0, 2.5};  // `sacfuse simulate --error-scale`, one block per scale
+  // Depth maps of the main blocks (`sacfuse simulate --depth`): "synthetic" (the error models) or "sgbm" (matched by
+  // StereoSGBM from the rendered images). The ceiling and the ablation blocks stay synthetic.
+  std::string depth = "synthetic";
   uint64_t seed = 7;                        // the same seed for every block (scene, cameras and errors)
   std::string preset = "small";             // simulate preset of every main block (procedural and LiDAR)
   std::vector<std::string> methods = FusionMethodNameList();  // every fusion.method
@@ -71,6 +74,7 @@ struct BlockSpec {
   bool no_pose_errors = false;    // true poses, every other error
   bool consistency_graphs = false;  // pass --consistency-graphs (dense correspondences)
   bool normal_maps = true;        // false: --no-normal-maps (only COLMAP reads them)
+  std::string depth = "synthetic";  // simulate --depth (sgbm: matched depth maps)
   // Arguments after `sacfuse`: simulate --preset ... --out <block_dir>.
   std::vector<std::string> SimulateArgs(const std::string& block_dir) const;
 };

@@ -85,6 +85,27 @@ TEST(QualityBenchPlanTest, BlocksPerScaleShareOneCeilingAndTheSeed) {
   EXPECT_EQ(plan.rows[4].overrides[0], (std::pair<std::string, std::string>{"fusion.method", "tsdf"}));
 }
 
+// --depth sgbm: the main blocks are simulated with matched depth maps; the ceiling (perfect depth) stays synthetic.
+TEST(QualityBenchPlanTest, MatchedDepthBlocksKeepASyntheticCeiling) {
+  QualityBenchOptions o;
+  o.blocks = {"city"};
+  o.error_scales = {1.0};
+  o.methods = {"sac"};
+  o.ablations = false;
+  o.depth = "sgbm";
+  const BenchPlan plan = BuildBenchPlan(o);
+  ASSERT_EQ(plan.rows.size(), 2u);
+  const BlockSpec& main = BlockOf(plan, plan.rows[0]);
+  EXPECT_EQ(main.id, "city-small-seed7-e1-nonormals-sgbm");
+  EXPECT_EQ(main.SimulateArgs("/b"), (std::vector<std::string>{"simulate", "--preset", "small", "--seed", "7", "--out",
+                                                               "/b", "--error-scale", "1", "--no-normal-maps",
+                                                               "--depth", "sgbm"}));
+  EXPECT_EQ(BlockOf(plan, plan.rows[1]).id, "city-small-seed7-noerrors-nonormals");
+  EXPECT_FALSE(Has(BlockOf(plan, plan.rows[1]).SimulateArgs("/b"), "--depth"));
+  o.depth = "patchmatch";
+  EXPECT_THROW(BuildBenchPlan(o), ConfigError);
+}
+
 TEST(QualityBenchPlanTest, ColmapRowsFollowTheMethodsWhenColmapIsThere) {
   QualityBenchOptions o;
   o.blocks = {"city"};

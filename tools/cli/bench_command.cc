@@ -134,6 +134,11 @@ void AddBenchCommand(CLI::App& app, int* exit_code) {
                      ->delimiter(',')
                      ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Simulation seed of every block")->capture_default_str();
+  cmd->add_option("--depth", o.depth,
+                  "Depth maps of the main blocks: synthetic (error models) or sgbm (simulate --depth sgbm: matched "
+                  "by StereoSGBM from the rendered images); the ceiling and the ablations stay synthetic")
+      ->check(CLI::IsMember({"synthetic", "sgbm"}))
+      ->capture_default_str();
   args->preset = cmd->add_option("--preset", o.preset, "Simulate preset of the main blocks")->capture_default_str();
   args->methods = cmd->add_option("--methods", o.methods, "fusion.method rows, comma-separated")
                       ->delimiter(',')

@@ -10,6 +10,7 @@
 #include "config/job_config.h"
 #include "core/error.h"
 #include "io/input_file.h"
+#include "jobs/output_lock.h"
 #include "jobs/tile_queue.h"
 #include "tiles/tile_plan.h"
 #include "tools/cli/cli_support.h"
@@ -58,6 +59,7 @@ void AddPlanCommand(CLI::App& app, int* exit_code) {
     SetupLogging(*list || *json ? "warn" : "info");
     *exit_code = RunGuarded([&] {
       const JobConfig config = config_args->Load();
+      const OutputWorkerLock lock(config);  // writes DIR/plan.json beside a run by design (jobs/output_lock.h)
       std::string plan_path;
       const TilePlan plan = PlanJob(config, &plan_path);
       if (*list) {

@@ -10,6 +10,7 @@
 
 #include "config/job_config.h"
 #include "core/error.h"
+#include "jobs/output_lock.h"
 #include "jobs/job_report.h"
 #include "report/report_writer.h"
 #include "jobs/run_state.h"
@@ -31,6 +32,7 @@ int ReportCommand(const ReportArgs& args) {
   if (!std::filesystem::is_directory(config.output.dir)) {
     throw InputError(config.output.dir, "no run output here (output.dir of " + args.config.path + "); run it first");
   }
+  const OutputWorkerLock lock(config);  // writes DIR/report beside a run (jobs/output_lock.h)
   ReportOptions options = JobReportOptions(config);  // the input opened from config.input when needed
   options.report_dir = args.out_dir;
   options.before_profile = !args.no_before;

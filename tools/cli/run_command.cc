@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "config/output_layout.h"
 #include "config/version.h"
+#include "jobs/output_lock.h"
 #include "jobs/run_fusion.h"
 #include "jobs/run_state.h"
 #include "tools/cli/cli_support.h"
@@ -43,6 +44,7 @@ struct RunArgs {
   bool print_defaults = false;
   std::string threads;  // "" = resources.threads of the config
   std::string tiles;  // comma-separated tile ids to recompute
+  bool wait = false;  // wait for another run or merge of the output folder instead of refusing
 };
 
 std::vector<std::string> SplitIds(const std::string& text) {
@@ -84,13 +86,15 @@ int RunCommand(const RunArgs& args) {
     if (!args.threads.empty()) config_args.more.push_back({"resources.threads", args.threads, false, "--threads"});
     const JobConfig config = config_args.Load();
     SetupLogging(config.log.level, LogPath(config));
+    // One writer per output folder (jobs/output_lock.h): refused (or waiting) before anything of DIR is touched.
+    OutputWriterLock lock(config, "run", args.wait);
     spdlog::info("{}: effective configuration ({}):\n{}", FullVersionString(), args.config.path,
                  DumpJobConfig(config, false));
     // DIR/run_state.json: running now; failed (with the error) or succeeded at the end (jobs/run_state.h).
     const std::optional<RunState> previous_state = MarkRunStarted(config);
     try {
       ProgressPrinter progress;
-      const RunSummary summary = RunFusionJob(config, std::ref(progress), SplitIds(args.tiles));
+      const RunSummary summary = RunFusionJob(config, lock, std::ref(progress), SplitIds(args.tiles));
       if (!summary.failed_tiles.empty()) {
         std::string ids;
         for (const auto& [id, reason] : summary.failed_tiles) ids += (ids.empty() ? "" : ", ") + id;
@@ -137,6 +141,9 @@ void AddRunCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--tiles", args->tiles,
                   "Tiled runs: recompute these tiles (comma-separated ids such as 3_4,3_5) even when done, "
                   "then merge");
+  cmd->add_flag("--wait", args->wait,
+                "When another `sacfuse run` or `merge` is writing the output folder, wait for it to finish instead "
+                "of refusing (exit 1)");
   cmd->callback([args, exit_code] { *exit_code = RunCommand(*args); });
 }
 

@@ -31,6 +31,8 @@ struct SimulateArgs {
   double area_m = 0.0;
   bool no_normal_maps = false;
   double pixel_scale = 1.0;
+  std::string depth = "synthetic";
+  int sgbm_min_agree = 0;  // 0 = the default of SgbmDepthOptions
 };
 
 // A ready-to-run config next to the block: `sacfuse run DIR/sacfuse.yaml` fuses and scores it. Only the keys the
@@ -70,6 +72,8 @@ int Simulate(const SimulateArgs& args) {
       throw ConfigError("--pixel-scale = " + std::to_string(args.pixel_scale) + ": must be > 0");
     }
     if (args.pixel_scale != 1.0) ScaleSimPixels(args.pixel_scale, &options);
+    options.depth = args.depth;
+    if (args.sgbm_min_agree > 0) options.sgbm.min_agree = args.sgbm_min_agree;
     ValidateSimOptions(options);
     SetupLogging("info", (std::filesystem::path(args.out_dir) / "simulate.log").string());
     spdlog::info("simulating preset '{}' (seed {}) into {}", options.preset, options.seed, args.out_dir);
@@ -124,6 +128,15 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
                   "Scale the image size by this factor at the same flight plan and optics (pixels x s^2, GSD / s): "
                   "the same block at another resolution, e.g. for scaling benchmarks")
       ->capture_default_str();
+  cmd->add_option("--depth", args->depth,
+                  "Depth maps: synthetic (true depth + the error models) or sgbm (OpenCV StereoSGBM on rectified "
+                  "pairs of the rendered images under the written poses: a real matcher's errors, exact truth)")
+      ->check(CLI::IsMember({"synthetic", "sgbm"}))
+      ->capture_default_str();
+  cmd->add_option("--sgbm-min-agree", args->sgbm_min_agree,
+                  "With --depth sgbm: stereo pairs that must agree to keep a pixel (default 2; 1 keeps single-pair "
+                  "depths, the matcher's raw output)")
+      ->check(CLI::Range(1, 16));
   cmd->callback([args, exit_code] { *exit_code = Simulate(*args); });
 }
 

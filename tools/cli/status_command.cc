@@ -3,12 +3,18 @@
 // manifest and the markers; no plan is built, nothing is computed, and the inputs are not re-identified: a
 // changed input shows at the next run). A done tile is re-checked against its
 // LAS file's size and header count and the current config's hash; --verify also recomputes the checksums.
-// A pending tile that a live worker has claimed (tiles/tile_claim.h) names the worker. --json prints the same as
+// A pending tile that a live worker has claimed (tiles/tile_claim.h) names the worker; a run or merge writing the
+// folder now (jobs/output_lock.h) is named; the fused cloud's line says whether it is the merge of the tiles now
+// done, and a cloud of the other output.format left by an earlier run is named as such. --json prints the same as
 // one JSON object (the schema in the command's help).
+#include <sys/stat.h>
+
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <sstream>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -19,6 +25,9 @@
 #include "config/result_settings.h"
 #include "config/version.h"
 #include "core/error.h"
+#include "io/json_text.h"
+#include "io/process_identity.h"
+#include "jobs/output_lock.h"
 #include "jobs/run_state.h"
 #include "tiles/tile_claim.h"
 #include "tiles/tile_manifest.h"
@@ -49,13 +58,17 @@ struct StatusReport {
   std::optional<RunState> last_run;
   std::string last_run_text;  // DescribeRunState
   bool last_run_failed = false;
+  std::string writer;  // the `run` or `merge` holding DIR/sacfuse.lock now ("" when none)
   std::string tiles_dir;
   bool tiled = false;  // a tiled run has started (DIR/tiles/manifest)
   bool settings_changed = false;
   std::vector<TileStatus> tiles;  // done, then failed, then pending
   uint64_t done_points = 0;
   std::string fused_path;
-  bool merged = false;
+  std::string fused_text;  // "merged from the 65 done tiles (written ...)", "not written yet", ...
+  bool merged = false;     // the cloud is the merge of the tiles done now (untiled: it exists)
+  std::string other_format_path;  // a cloud of the other output.format left by an earlier run ("" when none)
+  std::string other_format;
 
   size_t Count(const std::string& state) const {
     size_t n = 0;
@@ -64,18 +77,59 @@ struct StatusReport {
   }
 };
 
+// Modification time of a file in ns since the epoch; 0 when it does not exist.
+int64_t FileTimeNs(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return 0;
+  return static_cast<int64_t>(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
+}
+
+// The fused cloud's state: whether it is the merge of the tiles now done (tiled runs: `done` of `total`, the done
+// markers' finish times), and a cloud of the other output.format left by an earlier run.
+void DescribeFusedCloud(const JobConfig& config, const std::string& command_words, bool tiled, size_t done,
+                        size_t total, const std::vector<int64_t>& finished_unix_ns, StatusReport* r) {
+  const int64_t written = FileTimeNs(r->fused_path);
+  const int64_t last_done = finished_unix_ns.empty() ? 0 : *std::max_element(finished_unix_ns.begin(),
+                                                                              finished_unix_ns.end());
+  const size_t done_after = static_cast<size_t>(std::count_if(finished_unix_ns.begin(), finished_unix_ns.end(),
+                                                              [&](int64_t t) { return t > written; }));
+  std::ostringstream text;
+  if (written == 0) {
+    text << "not written yet";
+    if (tiled && done == total) text << " (every tile is done: `sacfuse merge " << command_words << "` writes it)";
+  } else if (!tiled) {
+    text << "written " << UtcText(written);
+    r->merged = true;
+  } else if (done < total) {
+    text << "written " << UtcText(written) << " by an earlier merge; " << total - done << " of " << total
+         << " tiles are not done now, so it is not the merge of the present tiles";
+  } else if (last_done > written) {
+    text << "written " << UtcText(written) << ", before " << done_after
+         << " tiles were computed again: not merged since (`sacfuse merge " << command_words << "`)";
+  } else {
+    text << "merged from the " << total << " done tiles (written " << UtcText(written) << ")";
+    r->merged = true;
+  }
+  r->fused_text = text.str();
+  r->other_format = config.output.format == "las" ? "laz" : "las";
+  const std::string other = FusedPathOfFormat(config, r->other_format);
+  if (FileTimeNs(other) != 0) r->other_format_path = other;
+}
+
 StatusReport GatherStatus(const StatusArgs& args) {
   JobConfig config = args.config.Load();
   StatusReport r;
   r.output_dir = config.output.dir;
   r.last_run = ReadRunState(config);
   r.last_run_text = DescribeRunState(config, &r.last_run_failed);
+  if (const std::optional<OutputWriter> writer = LiveOutputWriter(config)) {
+    r.writer = writer->pid > 0 ? DescribeOutputWriter(*writer) : std::string("a sacfuse process (starting)");
+  }
   r.tiles_dir = TilesDir(config);
   r.fused_path = FusedLasPath(config);
-  const bool fused_exists = std::filesystem::exists(r.fused_path);
   const std::optional<TileManifest> manifest = TileManifest::Read(r.tiles_dir);
   if (!manifest) {
-    r.merged = fused_exists;
+    DescribeFusedCloud(config, args.config.Words(), false, 0, 0, {}, &r);
     return r;
   }
   r.tiled = true;
@@ -84,11 +138,14 @@ StatusReport GatherStatus(const StatusArgs& args) {
   const std::string hash = ResultSettingsHash(config);
   r.settings_changed = manifest->config_hash != hash;
   std::vector<TileStatus> done, failed, pending;
+  std::vector<int64_t> finished_unix_ns;  // of the done tiles' markers
   for (const std::string& id : manifest->tiles) {
     const TileCheck check = VerifyTileDone(r.tiles_dir, id, hash, args.verify);
     if (check.done) {
       done.push_back({id, "done", "", ""});
-      r.done_points += ReadTileDoneMarker(r.tiles_dir, id)->points;
+      const auto marker = ReadTileDoneMarker(r.tiles_dir, id);
+      r.done_points += marker->points;
+      finished_unix_ns.push_back(marker->finished_unix_ns);
     } else if (const auto reason = ReadTileFailedReason(r.tiles_dir, id)) {
       failed.push_back({id, "failed", *reason, ""});
     } else {
@@ -101,20 +158,33 @@ StatusReport GatherStatus(const StatusArgs& args) {
     }
   }
   for (auto* group : {&done, &failed, &pending}) r.tiles.insert(r.tiles.end(), group->begin(), group->end());
-  r.merged = fused_exists && done.size() == manifest->tiles.size();
+  DescribeFusedCloud(config, args.config.Words(), true, done.size(), manifest->tiles.size(), finished_unix_ns, &r);
   return r;
+}
+
+// The fused cloud's line(s).
+void PrintFusedCloud(const StatusReport& r, std::ostream& out) {
+  out << std::filesystem::path(r.fused_path).filename().string() << ": " << r.fused_text << "\n";
+  if (!r.other_format_path.empty()) {
+    out << std::filesystem::path(r.other_format_path).filename().string()
+        << ": left by an earlier run with output.format " << r.other_format
+        << "; not this config's output (the next run or merge of this config removes it)\n";
+  }
 }
 
 void PrintText(const StatusReport& r, std::ostream& out) {
   if (!r.last_run_text.empty()) out << r.last_run_text << "\n";
+  if (!r.writer.empty()) out << "now writing " << r.output_dir << ": " << r.writer << "\n";
   if (!r.tiled) {
     out << "no tiled run has started in " << r.output_dir << " (no " << TileManifest::Path(r.tiles_dir) << ")\n";
+    PrintFusedCloud(r, out);
     return;
   }
   out << r.tiles.size() << " tiles with views: " << r.Count("done") << " done (" << r.done_points << " points), "
       << r.Count("failed") << " failed, " << r.Count("pending") << " pending\n";
   if (r.settings_changed) {
-    out << "the config's result-affecting settings differ from the last run's: tiles must be recomputed\n";
+    out << "the tiles were last planned for other result-affecting settings (by the last run or `sacfuse tile` "
+           "worker): tiles computed with them are pending for this config\n";
   }
   for (const TileStatus& t : r.tiles) {
     if (t.state == "done") out << "done     " << t.id << "\n";
@@ -125,7 +195,7 @@ void PrintText(const StatusReport& r, std::ostream& out) {
       out << ")\n";
     }
   }
-  out << "fused.las: " << (r.merged ? "merged" : "not merged") << "\n";
+  PrintFusedCloud(r, out);
 }
 
 nlohmann::json StatusJson(const StatusReport& r, int exit_code) {
@@ -160,8 +230,12 @@ nlohmann::json StatusJson(const StatusReport& r, int exit_code) {
             {"pending", r.Count("pending")},
             {"done_points", r.done_points}}},
           {"tiles", tiles},
+          {"writing_now", r.writer.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.writer)},
           {"fused_cloud", r.fused_path},
+          {"fused_cloud_state", r.fused_text},
           {"merged", r.merged},
+          {"other_format_cloud", r.other_format_path.empty() ? nlohmann::json(nullptr)
+                                                             : nlohmann::json(r.other_format_path)},
           {"exit_code", exit_code}};
 }
 
@@ -170,7 +244,7 @@ int StatusCommand(const StatusArgs& args) {
   // A failed or interrupted last run makes the exit code 1.
   const int exit_code = report.last_run_failed ? kExitFailure : kExitOk;
   if (args.json) {
-    std::cout << StatusJson(report, exit_code).dump(2) << "\n";
+    std::cout << JsonText(StatusJson(report, exit_code), 2) << "\n";
   } else {
     PrintText(report, std::cout);
   }
@@ -190,8 +264,12 @@ void AddStatusCommand(CLI::App& app, int* exit_code) {
       "else {state: succeeded | failed | running | interrupted, description, error, pid, host, started_unix_ns, "
       "ended_unix_ns, last_success_unix_ns}), last_run_failed, tiled (a tiled run has started), settings_changed "
       "(the config's result-affecting settings differ from the tiles'), counts {tiles, done, failed, pending, "
-      "done_points}, tiles: a list of {id, state: done | failed | pending, reason, claimed_by}, fused_cloud (its "
-      "path), merged, exit_code (as the command's: 1 when the last run failed or was interrupted).");
+      "done_points}, tiles: a list of {id, state: done | failed | pending, reason, claimed_by}, writing_now (the "
+      "`sacfuse run` or `merge` holding the output folder now, or null), fused_cloud (its path), fused_cloud_state "
+      "(the text line: merged from the done tiles, not merged since, not written yet...), merged (the cloud is the "
+      "merge of the tiles done now; untiled: it exists), other_format_cloud (a cloud of the other output.format "
+      "left by an earlier run, or null), exit_code (as the command's: 1 when the last run failed or was "
+      "interrupted).");
   cmd->callback([args, exit_code] {
     SetupLogging("warn");
     *exit_code = RunGuarded([&] { return StatusCommand(*args); });

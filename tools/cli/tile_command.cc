@@ -9,6 +9,7 @@
 
 #include "config/job_config.h"
 #include "config/output_layout.h"
+#include "jobs/output_lock.h"
 #include "jobs/tile_queue.h"
 #include "tools/cli/cli_support.h"
 #include "tools/cli/commands.h"
@@ -25,7 +26,8 @@ struct TileArgs {
 int TileCommand(const TileArgs& args) {
   const JobConfig config = args.config.Load();
   SetupLogging(config.log.level, LogPath(config));
-  const TileWorkOutcome out = RunOneTile(config, args.id);
+  const OutputWorkerLock lock(config);  // beside a run by design; waits out a writer's cleanup (a moment)
+  const TileWorkOutcome out = RunOneTile(config, args.id, lock);
   switch (out.result) {
     case TileWork::kAlreadyDone:
       std::cout << "tile " << args.id << ": done, skipped\n";

@@ -62,7 +62,29 @@ std::string SimOptionsJson(const SimOptions& o) {
       {"city_rotation_deg", o.city_rotation_deg},
       {"las_cell_m", o.las_cell_m},
       {"write_consistency_graphs", o.write_consistency_graphs},
+      {"depth", o.depth},
   };
+  if (o.depth == "sgbm") {
+    const SgbmDepthOptions& g = o.sgbm;
+    j["sgbm"] = {{"max_sources", g.sources.max_sources},
+                 {"min_baseline_ratio", g.sources.min_baseline_ratio},
+                 {"max_baseline_ratio", g.sources.max_baseline_ratio},
+                 {"min_shared_points", g.sources.min_shared_points},
+                 {"max_axis_angle_deg", g.sources.max_axis_angle_deg},
+                 {"block_size", g.match.block_size},
+                 {"p2_multiplier", g.match.p2_multiplier},
+                 {"left_right_max_diff", g.match.left_right_max_diff},
+                 {"uniqueness_percent", g.match.uniqueness_percent},
+                 {"speckle_window_px", g.match.speckle_window_px},
+                 {"speckle_range", g.match.speckle_range},
+                 {"erode_px", g.match.erode_px},
+                 {"depth_percentile", g.depth_percentile},
+                 {"depth_margin", g.depth_margin},
+                 {"near_fraction", g.near_fraction},
+                 {"max_disparities", g.max_disparities},
+                 {"merge_tolerance", g.merge_tolerance},
+                 {"min_agree", g.min_agree}};
+  }
   return j.dump();
 }
 

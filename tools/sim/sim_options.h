@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "tools/sim/sgbm_options.h"
+
 namespace sacfuse {
 
 // Switchable, seeded error models applied to the rendered (true) depth maps and poses. Each magnitude is for a
@@ -90,6 +92,11 @@ struct SimOptions {
   // itself does not read them (SAC fits its own normals); COLMAP's stereo_fusion needs them. Off saves 36 GB at
   // dortmund size.
   bool write_normal_maps = true;
+  // Where the depth maps come from: "synthetic" (the true depth plus the error models of SimErrorOptions) or "sgbm"
+  // (OpenCV's StereoSGBM on rectified pairs of the rendered images under the WRITTEN poses, tools/sim/sgbm_depth.h:
+  // a real matcher's errors with exact truth; the pose errors and every other output stay as they are).
+  std::string depth = "synthetic";
+  sim::SgbmDepthOptions sgbm;            // depth == "sgbm"
 };
 
 // Preset names (details in sim_options.cc): "tiny" (60 m, 20 views of 320x240 px at 20 cm GSD; about a second,

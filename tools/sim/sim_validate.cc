@@ -89,6 +89,29 @@ void ValidateSimOptions(const SimOptions& o) {
   c.Rule(o.las_cell_m == 0.0 || (o.las_cell_m >= 0.05 && o.las_cell_m <= 10.0), "las_cell_m", o.las_cell_m,
          "must be 0 (auto) or in [0.05, 10]");
 
+  c.Rule(o.depth == "synthetic" || o.depth == "sgbm", "depth", "\"" + o.depth + "\"",
+         "must be one of {synthetic, sgbm}");
+  if (o.depth == "sgbm") {
+    const sim::SgbmDepthOptions& g = o.sgbm;
+    c.IntRange("sgbm.sources.max_sources", g.sources.max_sources, 1, 16);
+    c.Range("sgbm.sources.min_baseline_ratio", g.sources.min_baseline_ratio, 0.0, 10.0);
+    c.Rule(g.sources.max_baseline_ratio > g.sources.min_baseline_ratio, "sgbm.sources.max_baseline_ratio",
+           g.sources.max_baseline_ratio, "must be > sgbm.sources.min_baseline_ratio");
+    c.IntRange("sgbm.sources.min_shared_points", g.sources.min_shared_points, 1, 1000000);
+    c.Range("sgbm.sources.max_axis_angle_deg", g.sources.max_axis_angle_deg, 0.0, 90.0);
+    c.Rule(g.match.block_size % 2 == 1 && g.match.block_size >= 1 && g.match.block_size <= 11, "sgbm.match.block_size",
+           g.match.block_size, "must be odd, in [1, 11]");
+    c.IntRange("sgbm.match.p2_multiplier", g.match.p2_multiplier, 9, 1000);
+    c.IntRange("sgbm.match.uniqueness_percent", g.match.uniqueness_percent, 0, 100);
+    c.IntRange("sgbm.match.erode_px", g.match.erode_px, 0, 100);
+    c.Range("sgbm.depth_percentile", g.depth_percentile, 0.0, 49.0);
+    c.Range("sgbm.depth_margin", g.depth_margin, 0.0, 0.9);
+    c.Range("sgbm.near_fraction", g.near_fraction, 0.01, 1.0);
+    c.IntRange("sgbm.max_disparities", g.max_disparities, 16, 4096);
+    c.Range("sgbm.merge_tolerance", g.merge_tolerance, 0.0, 1.0);
+    c.IntRange("sgbm.min_agree", g.min_agree, 1, g.sources.max_sources);
+  }
+
   const SimErrorOptions& e = o.errors;
   c.NonNegative("errors.pose_position_sigma_m", e.pose_position_sigma_m);
   c.NonNegative("errors.pose_rotation_sigma_deg", e.pose_rotation_sigma_deg);

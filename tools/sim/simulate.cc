@@ -23,6 +23,7 @@
 #include "tools/sim/las_scene.h"
 #include "tools/sim/reference_cloud.h"
 #include "tools/sim/render.h"
+#include "tools/sim/sgbm_workspace.h"
 #include "tools/sim/sim_metadata.h"
 #include "tools/sim/sim_random.h"
 #include "tools/sim/sim_workspace.h"
@@ -152,6 +153,33 @@ Json ViewJson(uint32_t index, const PlannedView& view, const Rigid3d& written, c
   };
 }
 
+Json SgbmPassJson(const SgbmPassSummary& pass) {
+  Json views = Json::array();
+  double valid_sum = 0.0, error_sum = 0.0, over_sum = 0.0;
+  for (const SgbmViewReport& v : pass.views) {
+    views.push_back({{"name", v.name},
+                     {"sources", v.sources},
+                     {"pair_valid_fraction", v.pair_valid_fraction},
+                     {"valid_fraction", v.valid_fraction},
+                     {"median_abs_error_m", v.median_abs_error_m},
+                     {"p90_abs_error_m", v.p90_abs_error_m},
+                     {"share_over_1m", v.share_over_1m},
+                     {"seconds", v.seconds}});
+    valid_sum += v.valid_fraction;
+    error_sum += v.median_abs_error_m;
+    over_sum += v.share_over_1m;
+  }
+  const double n = std::max<double>(1.0, static_cast<double>(pass.views.size()));
+  return Json{{"pairs", pass.pairs},
+              {"valid_pixels", pass.valid_pixels},
+              {"mean_valid_fraction", valid_sum / n},
+              {"mean_median_abs_error_m", error_sum / n},
+              {"mean_share_over_1m", over_sum / n},
+              {"match_seconds", pass.match_seconds},
+              {"seconds", pass.seconds},
+              {"views", views}};
+}
+
 }  // namespace
 
 SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std::string& out_dir,
@@ -196,14 +224,19 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
   std::vector<std::string> names;
   const int ds = std::max(1, o.depth_downsample);
   const double keypoint_sigma = o.errors.enabled ? o.errors.keypoint_sigma_px * o.errors.scale : 0.0;
+  const bool sgbm = o.depth == "sgbm";
+  auto depth_camera_of = [&](const PlannedView& view) {
+    const int dw = std::max(1, view.camera.width / ds), dh = std::max(1, view.camera.height / ds);
+    return ds == 1 ? view.camera : view.camera.Scaled(dw, dh);
+  };
   for (size_t v = 0; v < plan.views.size(); ++v) {
     const auto i = static_cast<uint32_t>(v);
     const PlannedView& view = plan.views[v];
     const bool oblique = view.kind != ViewKind::kNadir;
     const PoseError pose_error = DrawPoseError(o.errors, StreamKey(o.seed, Stream::kPose, i));
     const Rigid3d written = ApplyPoseError(view.cam_from_world, pose_error);
-    const int dw = std::max(1, view.camera.width / ds), dh = std::max(1, view.camera.height / ds);
-    const PinholeCamera depth_camera = ds == 1 ? view.camera : view.camera.Scaled(dw, dh);
+    const PinholeCamera depth_camera = depth_camera_of(view);
+    const int dw = depth_camera.width, dh = depth_camera.height;
 
     RenderRequest request;
     request.surface = &surface;
@@ -226,7 +259,7 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
     const ViewErrorModel error_model = MakeViewErrorModel(o.errors, oblique, view.camera.fx, plan.baseline_m, ds,
                                                           std::abs(flight_in_cam.x()) >= std::abs(flight_in_cam.y()));
     DepthErrorReport error_report;
-    {
+    if (!sgbm) {  // with --depth sgbm the maps are matched from the images once all are rendered (below)
       const DepthMap depth = ApplyDepthErrors(rendered.depth, error_model, StreamKey(o.seed, Stream::kStereoNoise, i),
                                               &error_report);
       main_ws.WriteMaps(view.name, depth, o.write_normal_maps ? &depth_camera : nullptr);
@@ -254,6 +287,31 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
   }
   report("sparse", 1, 1);
   WriteGeoMask(summary.eval_mask_png, coverage.Mask(2), scene.crs);
+
+  Json sgbm_json = nullptr;
+  if (sgbm) {
+    SgbmPassIo io;
+    io.images_dir = Join(out_dir, "images");
+    io.depth_downsample = ds;
+    io.true_depth = [&](uint32_t v) {  // rendered again (depth only) for the error statistics
+      RenderRequest request;
+      request.surface = &surface;
+      request.camera = plan.views[v].camera;
+      request.cam_from_world = plan.views[v].cam_from_world;
+      request.depth_width = depth_camera_of(plan.views[v]).width;
+      request.depth_height = depth_camera_of(plan.views[v]).height;
+      request.render_image = false;
+      return RenderView(request).depth;
+    };
+    io.write_maps = [&](uint32_t v, const DepthMap& depth) {
+      const PinholeCamera depth_camera = depth_camera_of(plan.views[v]);
+      main_ws.WriteMaps(names[v], depth, o.write_normal_maps ? &depth_camera : nullptr);
+    };
+    io.progress = [&](size_t done, size_t total) { report("sgbm", done, total); };
+    const SgbmPassSummary pass = RunSgbmPass(main_ws.model, o.sgbm, io);
+    summary.depth_pixels = pass.valid_pixels;
+    sgbm_json = SgbmPassJson(pass);
+  }
 
   Json consistency = nullptr;
   if (o.write_consistency_graphs) {  // main workspace only: truth/ stays as it was
@@ -313,6 +371,10 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
       {"consistency_graphs", consistency},
       {"views", views},
   };
+  if (sgbm) {
+    meta["depth_mode"] = "sgbm";
+    meta["sgbm"] = sgbm_json;
+  }
   WriteFileAtomically(summary.metadata_json, JsonText(meta, 1) + "\n");
   report("done", 1, 1);
   return summary;

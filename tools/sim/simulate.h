@@ -5,7 +5,8 @@
 //   sparse/{cameras,images,points3D}.bin   PINHOLE camera per view, the WRITTEN (erroneous) poses, sparse points
 //                                          with tracks (see sparse_points.h)
 //   stereo/depth_maps/<name>.geometric.bin  z-depth (float32, 0 = invalid) with the error models of
-//                                          depth_errors.h, at image size / depth_downsample
+//                                          depth_errors.h, or (depth: sgbm) matched from the images by
+//                                          StereoSGBM (sgbm_workspace.h), at image size / depth_downsample
 //   stereo/normal_maps/<name>.geometric.bin camera-frame unit normals from that depth (depth_normals.h)
 //   stereo/consistency_graphs/<name>.geometric.bin (write_consistency_graphs) COLMAP dense-matching consistency
 //                                          of the written depth and poses (consistency_graphs.h)
@@ -40,7 +41,8 @@ struct SimSummary {
   std::string metadata_json;
 };
 
-// stage: "plan", "scene", "reference", "views", "sparse", "consistency" (write_consistency_graphs), "done".
+// stage: "plan", "scene", "reference", "views", "sparse", "sgbm" (depth: sgbm), "consistency"
+// (write_consistency_graphs), "done".
 using SimProgress = std::function<void(const std::string& stage, size_t done, size_t total)>;
 
 // Throws ConfigError listing every broken rule as "sim.<key> = <value>: <rule>".
