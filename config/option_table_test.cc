@@ -237,7 +237,7 @@ TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
 TEST(OptionTableTest, PrintDefaultsSaysTilesAreLaz) {
   const std::string text = DumpJobConfig(JobConfig(), true);
   EXPECT_EQ(text.find("uncompressed LAS (intermediate"), std::string::npos) << text;
-  EXPECT_NE(text.find("tiled runs keep their tiles as LAZ whatever this says (DIR/tiles/<id>.laz"), std::string::npos)
+  EXPECT_NE(text.find("Tiled runs write their tiles as LAZ (tiles/<id>.laz)"), std::string::npos)
       << text;
 }
 
