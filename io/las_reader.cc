@@ -300,6 +300,16 @@ bool LasReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points) {
   return true;
 }
 
+bool LasReader::SkipStoredChunks(uint64_t chunks) {
+  Impl& r = *impl_;
+  uint64_t points = 0;
+  if (!r.laz || !r.laz->SkipStoredChunks(chunks, &points)) return false;
+  r.next += points;
+  return true;
+}
+
+const std::string& LasReader::path() const { return impl_->path; }
+
 uint64_t LasReader::laz_chunk_table_end() const { return impl_->laz ? impl_->laz->chunk_table_end() : 0; }
 
 std::vector<LasPoint> ReadAllLasPoints(const std::string& path, LasHeader* header) {

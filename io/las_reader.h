@@ -36,6 +36,11 @@ class LasReader {
   // LAZ files: the next chunk as stored, undecoded, and its point count, when the reading stands at a chunk's
   // start; Read continues after it. False for LAS files, at the end, or mid-chunk. (LasWriter::AppendLaz.)
   bool ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points);
+  // LAZ files: passes over the next `chunks` chunks without reading or decoding them (as ReadStoredChunk would
+  // read them); false, having moved nothing, under ReadStoredChunk's conditions or when fewer chunks are left.
+  bool SkipStoredChunks(uint64_t chunks);
+  // The path the reader was opened with.
+  const std::string& path() const;
   // LAZ files: the file offset just past the chunk table, whose coded length is that of its entries coded again
   // (0 for LAS files). A file shorter than this lost the end of its table (which the decoder, like LASzip's,
   // fills with zeros), what `sacfuse validate` reports.

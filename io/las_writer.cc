@@ -143,7 +143,8 @@ struct LasWriter::Impl {
     count += n;
   }
 
-  bool AppendLaz(LasReader& reader);
+  std::optional<LazAppendPart> PrepareLazAppend(LasReader& reader) const;
+  void AppendLaz(LasReader& reader, const LazAppendPart& part);
 
   // The stored integers' bounds and the returns of a run of records.
   struct RecordStats {
@@ -184,7 +185,7 @@ struct LasWriter::Impl {
       for (size_t i = 0; i < n; ++i) EncodeOne(get(i), count + i, use_offset, scratch.data());
     }
     // Pass 2: store, in runs that end where the buffer fills and is flushed.
-    offset = use_offset;
+    if (!offset) offset = use_offset;  // (not rewritten once set: PrepareLazAppend may read it meanwhile)
     for (size_t first = 0; first < n;) {
       const size_t take = std::min(n - first, buffer_records - buffered);
       if ((buffered + take) * record_length > buffer.size()) {
@@ -382,53 +383,63 @@ void LasWriter::Impl::Discard() {
   if (!temp_path.empty()) std::remove(temp_path.c_str());
 }
 
-bool LasWriter::Impl::AppendLaz(LasReader& reader) {
+std::optional<LazAppendPart> LasWriter::Impl::PrepareLazAppend(LasReader& reader) const {
+  // Reads only the layout and the offset, fixed once set (by the options or the first points written).
   const LasHeader& h = reader.header();
   if (!laz || !offset || reader.laszip_vlr() != laz->Vlr().data || h.version_minor != version_minor ||
       h.point_format != pdrf || h.point_record_length != record_length || h.scale != scale ||
       h.offset != *offset) {
-    return false;
+    return std::nullopt;
   }
-  std::array<int32_t, 3> lo, hi;  // the header's bounds as stored integers
+  LazAppendPart part;
   for (int a = 0; a < 3; ++a) {
-    if (!lf::Quantise(h.min[a], scale[a], (*offset)[a], &lo[a]) ||
-        !lf::Quantise(h.max[a], scale[a], (*offset)[a], &hi[a])) {
-      return false;
+    if (!lf::Quantise(h.min[a], scale[a], (*offset)[a], &part.stored_min[a]) ||
+        !lf::Quantise(h.max[a], scale[a], (*offset)[a], &part.stored_max[a])) {
+      return std::nullopt;
     }
   }
-  CheckWritable(h.point_count);
-  if (h.point_count == 0) return true;
+  part.full_chunks = h.point_count / LazChunkWriter::kChunkPoints;
+  part.copied_returns = h.points_by_return;
+  if (h.point_count == 0) return part;
+  // The last, shorter chunk is decoded here; the header's returns less its returns are the copied ones (LAS 1.2
+  // headers count returns 1-5 only, and so does this writer's header then).
   reader.Rewind();
-  const uint64_t full_chunks = h.point_count / LazChunkWriter::kChunkPoints;
-  const uint64_t copied_points = full_chunks * LazChunkWriter::kChunkPoints;
+  if (!reader.SkipStoredChunks(part.full_chunks)) {
+    throw InputError(reader.path(), "its LAZ chunks could not be skipped to its last chunk");
+  }
+  reader.Read(&part.tail, static_cast<size_t>(h.point_count - part.full_chunks * LazChunkWriter::kChunkPoints));
+  const int counted_returns = version_minor >= 4 ? 15 : 5;
+  for (const LasPoint& p : part.tail) {
+    if (p.return_number < 1 || p.return_number > counted_returns) continue;
+    if (part.copied_returns[p.return_number - 1] == 0) {
+      throw InputError(reader.path(), "its header does not count its returns");
+    }
+    --part.copied_returns[p.return_number - 1];
+  }
+  return part;
+}
+
+void LasWriter::Impl::AppendLaz(LasReader& reader, const LazAppendPart& part) {
+  const uint64_t copied_points = part.full_chunks * LazChunkWriter::kChunkPoints;
+  CheckWritable(copied_points + part.tail.size());
+  if (copied_points + part.tail.size() == 0) return;
+  reader.Rewind();
   try {
     std::vector<uint8_t> bytes;
     uint64_t points = 0;
-    for (uint64_t c = 0; c < full_chunks; ++c) {
+    for (uint64_t c = 0; c < part.full_chunks; ++c) {
       if (!reader.ReadStoredChunk(&bytes, &points) || points != LazChunkWriter::kChunkPoints) {
         Fail("LAZ chunk " + std::to_string(c) + " of the file appended could not be copied");
       }
       WriteBytes(bytes.data(), bytes.size());
       laz->AddStoredChunk(bytes.size());
     }
-    // The last, shorter chunk is decoded and written like any points; the header's returns less its returns
-    // are the copied ones (LAS 1.2 headers count returns 1-5 only, and so does this writer's header then).
-    std::vector<LasPoint> tail;
-    reader.Read(&tail, static_cast<size_t>(h.point_count - copied_points));
-    std::array<uint64_t, 15> copied_returns = h.points_by_return;
-    const int counted_returns = version_minor >= 4 ? 15 : 5;
-    for (const LasPoint& p : tail) {
-      if (p.return_number < 1 || p.return_number > counted_returns) continue;
-      if (copied_returns[p.return_number - 1] == 0) Fail("the appended file's header does not count its returns");
-      --copied_returns[p.return_number - 1];
-    }
-    WriteChunk(tail.size(), [&](size_t i) -> const LasPoint& { return tail[i]; });
-    CountStored(copied_points, lo, hi, copied_returns);
+    WriteChunk(part.tail.size(), [&](size_t i) -> const LasPoint& { return part.tail[i]; });
+    CountStored(copied_points, part.stored_min, part.stored_max, part.copied_returns);
   } catch (...) {
     failed = true;  // chunks may be written: the file cannot be completed
     throw;
   }
-  return true;
 }
 
 LasWriter::LasWriter(const std::string& path, const LasWriterOptions& options) : impl_(std::make_unique<Impl>()) {
@@ -451,7 +462,18 @@ void LasWriter::WritePoints(const LasPoint* points, size_t count) {
   impl_->WriteChunk(count, [&](size_t i) -> const LasPoint& { return points[i]; });
 }
 
-bool LasWriter::AppendLaz(LasReader& reader) { return impl_->AppendLaz(reader); }
+bool LasWriter::AppendLaz(LasReader& reader) {
+  const std::optional<LazAppendPart> part = impl_->PrepareLazAppend(reader);
+  if (!part) return false;
+  impl_->AppendLaz(reader, *part);
+  return true;
+}
+
+std::optional<LazAppendPart> LasWriter::PrepareLazAppend(LasReader& reader) const {
+  return impl_->PrepareLazAppend(reader);
+}
+
+void LasWriter::AppendLaz(LasReader& reader, const LazAppendPart& part) { impl_->AppendLaz(reader, part); }
 
 void LasWriter::Close() {
   Impl& w = *impl_;

@@ -6,6 +6,7 @@
 // its final path. A writer destroyed without Close() (an exception, a crash) removes its temporary file, so a
 // complete-looking file at the final path is always complete. Follows every rule of
 // ../shared/reference/jobs-and-las.md part B.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -43,6 +44,16 @@ struct LasWriterOptions {
   bool compressed = false;
 };
 
+// A LAZ file's points ready to be appended (LasWriter::PrepareLazAppend): its full chunks, copied as stored when
+// appended, and its last, shorter chunk decoded.
+struct LazAppendPart {
+  uint64_t full_chunks = 0;
+  std::vector<LasPoint> tail;                 // the last chunk's points
+  std::array<int32_t, 3> stored_min = {};     // the header's bounds as stored integers
+  std::array<int32_t, 3> stored_max = {};
+  std::array<uint64_t, 15> copied_returns = {};  // the header's returns less the tail's: the full chunks'
+};
+
 class LasWriter : public PointSink {
  public:
   // Throws sacfuse::Error when the temporary file cannot be created or the options break a LAS rule.
@@ -66,6 +77,15 @@ class LasWriter : public PointSink {
   // `reader`'s header. Returns false, having written nothing, when `reader` does not qualify (then Read its
   // points and WritePoints them).
   bool AppendLaz(LasReader& reader);
+  // AppendLaz in two steps, so that the files of a merge can be made ready on several threads while the writer
+  // appends earlier ones in order. PrepareLazAppend decodes `reader`'s last, shorter chunk and checks its layout
+  // against this writer's; it reads only what is fixed once set (the writer's layout, and its offset, given in the
+  // options or taken from the first points written), so with an offset in the options it may run on any thread
+  // while another appends. nullopt, having written nothing,
+  // when `reader` does not qualify. AppendLaz(reader, part) then copies `reader`'s full chunks (from its start)
+  // and writes the decoded points: the same file as AppendLaz(reader).
+  std::optional<LazAppendPart> PrepareLazAppend(LasReader& reader) const;
+  void AppendLaz(LasReader& reader, const LazAppendPart& part);
   // Patches the header, fsyncs, renames into place. Throws on I/O errors (and leaves no file at the path).
   void Close();
 

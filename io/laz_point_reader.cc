@@ -248,6 +248,15 @@ bool LazPointReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* poin
   return true;
 }
 
+bool LazPointReader::SkipStoredChunks(uint64_t chunks, uint64_t* points) {
+  if (pos_ != current_.valid || !current_.error.empty() || chunks > chunks_.size() - next_chunk_) return false;
+  if (chunks == 0) return true;
+  WaitForReadAhead(/*keep=*/false);
+  ahead_ready_ = false;
+  for (uint64_t i = 0; i < chunks; ++i) *points += chunks_[next_chunk_++].points;
+  return true;
+}
+
 void LazPointReader::Rewind() {
   WaitForReadAhead(/*keep=*/false);
   ahead_ready_ = false;

@@ -42,6 +42,9 @@ class LazPointReader {
   // The next chunk as stored, undecoded, and its point count, when no decoded records are pending (the reading
   // stands at a chunk's start); false at the end or mid-chunk. Read continues after it.
   bool ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points);
+  // Passes over the next `chunks` chunks as ReadStoredChunk would read them, adding their points to `*points`;
+  // false, having moved nothing, where ReadStoredChunk would fail or when fewer chunks are left.
+  bool SkipStoredChunks(uint64_t chunks, uint64_t* points);
 
   static constexpr size_t kBatchChunks = 8;         // chunks decoded in parallel
   static constexpr uint64_t kBatchPoints = 400000;  // points of a batch (8 chunks of the usual 50,000)

@@ -1,5 +1,8 @@
 #include "io/point_cloud_writer.h"
 
+#include "core/error.h"
+#include "io/las_reader.h"
+
 namespace sacfuse {
 namespace {
 
@@ -8,7 +11,10 @@ class LasFile final : public PointCloudWriter {
   LasFile(const std::string& path, const LasWriterOptions& options) : writer_(path, options) {}
   void Write(const FusedPoint* points, size_t count) override { writer_.Write(points, count); }
   void WritePoints(const LasPoint* points, size_t count) override { writer_.WritePoints(points, count); }
-  bool AppendLaz(LasReader& reader) override { return writer_.AppendLaz(reader); }
+  std::optional<LazAppendPart> PrepareLazAppend(LasReader& reader) const override {
+    return writer_.PrepareLazAppend(reader);
+  }
+  void AppendLaz(LasReader& reader, const LazAppendPart& part) override { writer_.AppendLaz(reader, part); }
   void Close() override { writer_.Close(); }
   uint64_t num_points() const override { return writer_.num_points(); }
 
@@ -21,7 +27,11 @@ class CopcFile final : public PointCloudWriter {
   CopcFile(const std::string& path, const LasWriterOptions& las, const CopcOptions& copc) : writer_(path, las, copc) {}
   void Write(const FusedPoint* points, size_t count) override { writer_.Write(points, count); }
   void WritePoints(const LasPoint* points, size_t count) override { writer_.WritePoints(points, count); }
-  bool AppendLaz(LasReader&) override { return false; }  // COPC chunks are octree nodes: points are rebuilt
+  // COPC chunks are octree nodes: the points are rebuilt.
+  std::optional<LazAppendPart> PrepareLazAppend(LasReader&) const override { return std::nullopt; }
+  void AppendLaz(LasReader& reader, const LazAppendPart&) override {
+    throw Error(reader.path() + ": a COPC file is not appended as LAZ chunks");
+  }
   void Close() override { writer_.Close(); }
   uint64_t num_points() const override { return writer_.num_points(); }
 

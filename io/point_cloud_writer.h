@@ -20,9 +20,11 @@ class PointCloudWriter : public PointSink {
  public:
   // Every field as given (LasWriter::WritePoints).
   virtual void WritePoints(const LasPoint* points, size_t count) = 0;
-  // Appends the points of `reader` by copying its LAZ chunks when its layout is this writer's (LasWriter::AppendLaz);
-  // false, having written nothing, when it cannot (then read the points and WritePoints them).
-  virtual bool AppendLaz(LasReader& reader) = 0;
+  // Appending the points of `reader` by copying its LAZ chunks when its layout is this writer's, in two steps
+  // (LasWriter::PrepareLazAppend, AppendLaz): the first may run on other threads while this writer appends;
+  // nullopt, having written nothing, when it cannot (then read the points and WritePoints them).
+  virtual std::optional<LazAppendPart> PrepareLazAppend(LasReader& reader) const = 0;
+  virtual void AppendLaz(LasReader& reader, const LazAppendPart& part) = 0;
   // Finishes the file (written under a temporary name, renamed into place); throws on I/O errors.
   virtual void Close() = 0;
   virtual uint64_t num_points() const = 0;

@@ -1,7 +1,12 @@
 #include "tiles/tile_merge.h"
 
+#include <exception>
+#include <memory>
+#include <optional>
 
 #include <spdlog/spdlog.h>
+#include <tbb/parallel_pipeline.h>
+#include <tbb/task_arena.h>
 
 #include "config/output_layout.h"
 #include "config/result_settings.h"
@@ -18,6 +23,15 @@ namespace {
 
 constexpr size_t kMergeChunkPoints = 1 << 16;
 
+// A tile file opened, checked and, when its chunks can be copied, with its last chunk decoded: made on any thread,
+// appended in grid order. An error stays here until the tile's turn, so a merge fails on the first bad tile in
+// grid order whatever the threads.
+struct PreparedTile {
+  std::unique_ptr<LasReader> reader;
+  std::optional<LazAppendPart> part;  // unset: every point is read and written
+  std::exception_ptr error;
+};
+
 }  // namespace
 
 uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std::string& out_path,
@@ -28,19 +42,49 @@ uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std:
   const Eigen::Vector3d scale = options.scale_xyz ? *options.scale_xyz : Eigen::Vector3d::Constant(options.scale_m);
   const std::unique_ptr<PointCloudWriter> out = OpenPointCloudWriter(out_path, cloud);
   PointCloudWriter& writer = *out;
+  // A pipeline: the tiles ahead are opened and their last, partial LAZ chunks decoded on the pool (the writer's
+  // layout and offset are fixed, PrepareLazAppend only reads them) while the writer appends the tiles before them
+  // in grid order (copying full chunks, coding the gathered last points in parallel batches), so the file is the
+  // same as a tile-by-tile merge for any thread count. At most one tile per thread plus one is held at once.
+  const size_t tokens = static_cast<size_t>(tbb::this_task_arena::max_concurrency()) + 1;
+  size_t next = 0, done = 0;
   std::vector<LasPoint> chunk;
-  for (size_t i = 0; i < tile_las_paths.size(); ++i) {
-    LasReader reader(tile_las_paths[i]);
-    const LasHeader& h = reader.header();
-    if (h.scale != scale || h.offset != *options.offset) {
-      throw InputError(tile_las_paths[i], "scale/offset differ from the run's shared ones; rerun this tile");
-    }
-    // LAZ tiles into a LAZ cloud: the chunks are copied. Otherwise (LAS output) every point is decoded.
-    if (!writer.AppendLaz(reader)) {
-      while (reader.Read(&chunk, kMergeChunkPoints) > 0) writer.WritePoints(chunk.data(), chunk.size());
-    }
-    if (progress) progress(i + 1, tile_las_paths.size());
-  }
+  tbb::parallel_pipeline(
+      tokens,
+      tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order,
+                                     [&](tbb::flow_control& control) -> size_t {
+                                       if (next == tile_las_paths.size()) control.stop();
+                                       return next++;
+                                     }) &
+          tbb::make_filter<size_t, std::shared_ptr<PreparedTile>>(
+              tbb::filter_mode::parallel,
+              [&](size_t i) {
+                auto tile = std::make_shared<PreparedTile>();
+                try {
+                  tile->reader = std::make_unique<LasReader>(tile_las_paths[i]);
+                  const LasHeader& h = tile->reader->header();
+                  if (h.scale != scale || h.offset != *options.offset) {
+                    throw InputError(tile_las_paths[i],
+                                     "scale/offset differ from the run's shared ones; rerun this tile");
+                  }
+                  // LAZ tiles into a LAZ cloud: the chunks are copied. Otherwise (LAS, COPC) every point is read.
+                  tile->part = writer.PrepareLazAppend(*tile->reader);
+                } catch (...) {
+                  tile->error = std::current_exception();
+                }
+                return tile;
+              }) &
+          tbb::make_filter<std::shared_ptr<PreparedTile>, void>(
+              tbb::filter_mode::serial_in_order, [&](const std::shared_ptr<PreparedTile>& tile) {
+                if (tile->error) std::rethrow_exception(tile->error);
+                LasReader& reader = *tile->reader;
+                if (tile->part) {
+                  writer.AppendLaz(reader, *tile->part);
+                } else {
+                  while (reader.Read(&chunk, kMergeChunkPoints) > 0) writer.WritePoints(chunk.data(), chunk.size());
+                }
+                if (progress) progress(++done, tile_las_paths.size());
+              }));
   if (before_commit) before_commit();
   writer.Close();
   return writer.num_points();
