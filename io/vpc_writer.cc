@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <ctime>
+#include <exception>
 #include <tuple>
 #include <filesystem>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <utility>
 
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -79,63 +81,80 @@ Json BoxPolygon(const LasHeader& h, const To& to) {
   return {{"type", "Polygon"}, {"coordinates", Json::array({ring})}};
 }
 
+// The STAC item of one file.
+Json FileFeature(const std::string& file, const fs::path& base, const Crs& crs) {
+  LasHeader h;
+  {
+    LasReader reader(file);
+    h = reader.header();
+  }
+  const LasCrsInfo file_crs = ReadLasCrs(h);
+  const double z_mid = (h.min.z() + h.max.z()) / 2;
+  // Geometry and bbox: WGS 84 longitude / latitude when the CRS converts there, else the file's coordinates.
+  Json geometry, bbox;
+  const auto native = [](double x, double y) { return Json::array({x, y}); };
+  if (crs.georeferenced()) {
+    double lon_min = 180, lon_max = -180, lat_min = 90, lat_max = -90;
+    const auto wgs84 = [&](double x, double y) {
+      const Eigen::Vector2d llh = LatLonFromProject(crs, Eigen::Vector3d(x, y, z_mid));  // no geoid grid needed
+      lat_min = std::min(lat_min, llh[0]);
+      lat_max = std::max(lat_max, llh[0]);
+      lon_min = std::min(lon_min, llh[1]);
+      lon_max = std::max(lon_max, llh[1]);
+      return Json::array({llh[1], llh[0]});
+    };
+    geometry = BoxPolygon(h, wgs84);
+    bbox = Json::array({lon_min, lat_min, lon_max, lat_max});
+  } else {
+    geometry = BoxPolygon(h, native);
+    bbox = Json::array({h.min.x(), h.min.y(), h.max.x(), h.max.y()});
+  }
+  Json properties = {
+      {"datetime", CreationDate(h.creation_year, h.creation_day)},
+      {"pc:count", h.point_count},
+      {"pc:type", "eopc"},  // electro-optical (photogrammetric) point cloud
+      {"pc:encoding", "laszip"},
+      {"pc:schemas", Schemas(h.point_format)},
+      {"proj:wkt2", file_crs.wkt},
+      {"proj:geometry", BoxPolygon(h, native)},
+      {"proj:bbox", Json::array({h.min.x(), h.min.y(), h.min.z(), h.max.x(), h.max.y(), h.max.z()})},
+  };
+  if (const std::optional<int> code = WholeEpsgCode(file_crs)) properties["proj:epsg"] = *code;
+  const std::string href = "./" + fs::relative(fs::absolute(file), base).generic_string();
+  std::string id = fs::path(file).filename().string();
+  id = id.substr(0, id.find('.'));  // "3_4" of 3_4.laz and 3_4.copc.laz
+  return Json{{"type", "Feature"},
+              {"stac_version", "1.0.0"},
+              {"stac_extensions",
+               Json::array({"https://stac-extensions.github.io/pointcloud/v1.0.0/schema.json",
+                            "https://stac-extensions.github.io/projection/v1.1.0/schema.json"})},
+              {"id", id},
+              {"geometry", geometry},
+              {"bbox", bbox},
+              {"properties", properties},
+              {"links", Json::array()},
+              {"assets", {{"data", {{"href", href}, {"roles", Json::array({"data"})}}}}}};
+}
+
 }  // namespace
 
 void WriteVirtualPointCloud(const std::string& vpc_path, const std::vector<std::string>& files, const Crs& crs) {
   const fs::path base = fs::absolute(vpc_path).parent_path();
+  // One feature per file, made in parallel (opening a LAZ file reads its chunk table; a merge indexes hundreds of
+  // tiles), kept in the order given; the first file in that order that fails is the one reported.
+  std::vector<Json> items(files.size());
+  std::vector<std::exception_ptr> errors(files.size());
+  tbb::parallel_for(size_t{0}, files.size(), [&](size_t i) {
+    try {
+      items[i] = FileFeature(files[i], base, crs);
+    } catch (...) {
+      errors[i] = std::current_exception();
+    }
+  });
   Json features = Json::array();
-  for (const std::string& file : files) {
-    LasHeader h;
-    {
-      LasReader reader(file);
-      h = reader.header();
-    }
-    const LasCrsInfo file_crs = ReadLasCrs(h);
-    const double z_mid = (h.min.z() + h.max.z()) / 2;
-    // Geometry and bbox: WGS 84 longitude / latitude when the CRS converts there, else the file's coordinates.
-    Json geometry, bbox;
-    const auto native = [](double x, double y) { return Json::array({x, y}); };
-    if (crs.georeferenced()) {
-      double lon_min = 180, lon_max = -180, lat_min = 90, lat_max = -90;
-      const auto wgs84 = [&](double x, double y) {
-        const Eigen::Vector2d llh = LatLonFromProject(crs, Eigen::Vector3d(x, y, z_mid));  // no geoid grid needed
-        lat_min = std::min(lat_min, llh[0]);
-        lat_max = std::max(lat_max, llh[0]);
-        lon_min = std::min(lon_min, llh[1]);
-        lon_max = std::max(lon_max, llh[1]);
-        return Json::array({llh[1], llh[0]});
-      };
-      geometry = BoxPolygon(h, wgs84);
-      bbox = Json::array({lon_min, lat_min, lon_max, lat_max});
-    } else {
-      geometry = BoxPolygon(h, native);
-      bbox = Json::array({h.min.x(), h.min.y(), h.max.x(), h.max.y()});
-    }
-    Json properties = {
-        {"datetime", CreationDate(h.creation_year, h.creation_day)},
-        {"pc:count", h.point_count},
-        {"pc:type", "eopc"},  // electro-optical (photogrammetric) point cloud
-        {"pc:encoding", "laszip"},
-        {"pc:schemas", Schemas(h.point_format)},
-        {"proj:wkt2", file_crs.wkt},
-        {"proj:geometry", BoxPolygon(h, native)},
-        {"proj:bbox", Json::array({h.min.x(), h.min.y(), h.min.z(), h.max.x(), h.max.y(), h.max.z()})},
-    };
-    if (const std::optional<int> code = WholeEpsgCode(file_crs)) properties["proj:epsg"] = *code;
-    const std::string href = "./" + fs::relative(fs::absolute(file), base).generic_string();
-    std::string id = fs::path(file).filename().string();
-    id = id.substr(0, id.find('.'));  // "3_4" of 3_4.laz and 3_4.copc.laz
-    features.push_back({{"type", "Feature"},
-                        {"stac_version", "1.0.0"},
-                        {"stac_extensions",
-                         Json::array({"https://stac-extensions.github.io/pointcloud/v1.0.0/schema.json",
-                                      "https://stac-extensions.github.io/projection/v1.1.0/schema.json"})},
-                        {"id", id},
-                        {"geometry", geometry},
-                        {"bbox", bbox},
-                        {"properties", properties},
-                        {"links", Json::array()},
-                        {"assets", {{"data", {{"href", href}, {"roles", Json::array({"data"})}}}}}});
+  for (size_t i = 0; i < files.size(); ++i) {
+    if (errors[i]) std::rethrow_exception(errors[i]);
+    features.push_back(std::move(items[i]));
   }
   const Json vpc = {{"type", "FeatureCollection"}, {"features", features}};
   WriteFileAtomically(vpc_path, vpc.dump(2) + "\n");

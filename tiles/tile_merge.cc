@@ -5,6 +5,7 @@
 #include <optional>
 
 #include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
 #include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
@@ -31,6 +32,15 @@ struct PreparedTile {
   std::optional<LazAppendPart> part;  // unset: every point is read and written
   std::exception_ptr error;
 };
+
+// The plan's tiles that have views (the others have no file), grid order.
+std::vector<const PlannedTile*> TilesWithViews(const TilePlan& plan) {
+  std::vector<const PlannedTile*> tiles;
+  for (const PlannedTile& tile : plan.tiles) {
+    if (!tile.views.empty()) tiles.push_back(&tile);
+  }
+  return tiles;
+}
 
 }  // namespace
 
@@ -100,17 +110,40 @@ MergeResult MergeTiledRun(const JobConfig& config, const DepthBlock& input, cons
   std::vector<std::string> merge_order;  // LAS files of the tiles that have points, grid order
   std::vector<std::pair<std::string, std::string>> checked;  // tile id, its marker's text as checked
   MergeResult merged;
-  for (const PlannedTile& tile : plan.tiles) {
-    if (tile.views.empty()) continue;
-    const TileInputs inputs = TileInputsOf(tile, input.views(), identities);
-    const TileCheck check = VerifyTileDone(tiles_dir, tile.id, hash, /*full_checksum=*/false, &inputs);
-    if (!check.done) {
-      throw Error("tile " + tile.id + " is not done for this job (" + check.reason + "): nothing merged into " +
+  // Every tile's marker checked in parallel (each reads its marker and its file's header), then taken in grid
+  // order, so the first tile in that order that is not done is the one reported.
+  struct CheckedTile {
+    TileCheck check;
+    std::string marker_text;
+    std::optional<TileDoneMarker> marker;
+    std::exception_ptr error;
+  };
+  const std::vector<const PlannedTile*> with_views = TilesWithViews(plan);
+  std::vector<CheckedTile> checks(with_views.size());
+  tbb::parallel_for(size_t{0}, with_views.size(), [&](size_t i) {
+    const PlannedTile& tile = *with_views[i];
+    CheckedTile& c = checks[i];
+    try {
+      const TileInputs inputs = TileInputsOf(tile, input.views(), identities);
+      c.check = VerifyTileDone(tiles_dir, tile.id, hash, /*full_checksum=*/false, &inputs);
+      if (!c.check.done) return;
+      c.marker_text = ReadSmallFile(TileDonePath(tiles_dir, tile.id));
+      c.marker = ReadTileDoneMarker(tiles_dir, tile.id);
+    } catch (...) {
+      c.error = std::current_exception();
+    }
+  });
+  for (size_t i = 0; i < with_views.size(); ++i) {
+    const PlannedTile& tile = *with_views[i];
+    const CheckedTile& c = checks[i];
+    if (c.error) std::rethrow_exception(c.error);
+    if (!c.check.done) {
+      throw Error("tile " + tile.id + " is not done for this job (" + c.check.reason + "): nothing merged into " +
                   fused_las_path + "; compute it with this config (`sacfuse run` or `sacfuse tile CONFIG --id " +
                   tile.id + "`)");
     }
-    checked.emplace_back(tile.id, ReadSmallFile(TileDonePath(tiles_dir, tile.id)));
-    const auto marker = ReadTileDoneMarker(tiles_dir, tile.id);
+    checked.emplace_back(tile.id, c.marker_text);
+    const auto& marker = c.marker;
     if (!marker) throw Error(TileDonePath(tiles_dir, tile.id) + ": done marker vanished before the merge");
     if (marker->points > 0) merge_order.push_back(TileCloudPath(tiles_dir, *marker));
     for (const auto& [view, n] : marker->points_per_view) {
@@ -145,11 +178,16 @@ std::vector<std::string> MissingTiles(const JobConfig& config, const DepthBlock&
                                       const std::vector<ViewIdentity>& identities) {
   const std::string tiles_dir = TilesDir(config);
   const std::string hash = ResultSettingsHash(config);
+  // The tiles' checksums in parallel: each reads its whole file.
+  const std::vector<const PlannedTile*> with_views = TilesWithViews(plan);
+  std::vector<char> done(with_views.size(), 0);
+  tbb::parallel_for(size_t{0}, with_views.size(), [&](size_t i) {
+    const TileInputs inputs = TileInputsOf(*with_views[i], input.views(), identities);
+    done[i] = VerifyTileDone(tiles_dir, with_views[i]->id, hash, true, &inputs).done;
+  });
   std::vector<std::string> missing;
-  for (const PlannedTile& tile : plan.tiles) {
-    if (tile.views.empty()) continue;
-    const TileInputs inputs = TileInputsOf(tile, input.views(), identities);
-    if (!VerifyTileDone(tiles_dir, tile.id, hash, true, &inputs).done) missing.push_back(tile.id);
+  for (size_t i = 0; i < with_views.size(); ++i) {
+    if (!done[i]) missing.push_back(with_views[i]->id);
   }
   return missing;
 }
