@@ -30,6 +30,8 @@ constexpr size_t kMergeChunkPoints = 1 << 16;
 struct PreparedTile {
   std::unique_ptr<LasReader> reader;
   std::optional<LazAppendPart> part;  // unset: every point is read and written
+  std::vector<LasPoint> points;       // without `part`, a small tile's points, read ahead
+  bool read_ahead = false;
   std::exception_ptr error;
 };
 
@@ -52,10 +54,11 @@ uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std:
   const Eigen::Vector3d scale = options.scale_xyz ? *options.scale_xyz : Eigen::Vector3d::Constant(options.scale_m);
   const std::unique_ptr<PointCloudWriter> out = OpenPointCloudWriter(out_path, cloud);
   PointCloudWriter& writer = *out;
-  // A pipeline: the tiles ahead are opened and their last, partial LAZ chunks decoded on the pool (the writer's
-  // layout and offset are fixed, PrepareLazAppend only reads them) while the writer appends the tiles before them
-  // in grid order (copying full chunks, coding the gathered last points in parallel batches), so the file is the
-  // same as a tile-by-tile merge for any thread count. At most one tile per thread plus one is held at once.
+  // A pipeline: the tiles ahead are opened and their last, partial LAZ chunks (into LAS or COPC: small tiles'
+  // points) decoded on the pool (the writer's layout and offset are fixed, PrepareLazAppend only reads them) while
+  // the writer appends the tiles before them in grid order (copying full chunks, coding the gathered last points
+  // in parallel batches), so the file is the same as a tile-by-tile merge for any thread count. At most one tile
+  // per thread plus one is held at once (each at most 65,536 decoded points, ~5 MB).
   const size_t tokens = static_cast<size_t>(tbb::this_task_arena::max_concurrency()) + 1;
   size_t next = 0, done = 0;
   std::vector<LasPoint> chunk;
@@ -79,6 +82,11 @@ uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std:
                   }
                   // LAZ tiles into a LAZ cloud: the chunks are copied. Otherwise (LAS, COPC) every point is read.
                   tile->part = writer.PrepareLazAppend(*tile->reader);
+                  // A tile of one read is read here too (a large one is decoded in parallel batches as written).
+                  if (!tile->part && h.point_count <= kMergeChunkPoints) {
+                    tile->reader->Read(&tile->points, kMergeChunkPoints);
+                    tile->read_ahead = true;
+                  }
                 } catch (...) {
                   tile->error = std::current_exception();
                 }
@@ -90,6 +98,8 @@ uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std:
                 LasReader& reader = *tile->reader;
                 if (tile->part) {
                   writer.AppendLaz(reader, *tile->part);
+                } else if (tile->read_ahead) {
+                  writer.WritePoints(tile->points.data(), tile->points.size());
                 } else {
                   while (reader.Read(&chunk, kMergeChunkPoints) > 0) writer.WritePoints(chunk.data(), chunk.size());
                 }
