@@ -11,8 +11,10 @@
 
 namespace sacfuse::testing {
 
-// Base fixture: SetUpTestSuite simulates `sacfuse simulate --preset tiny --seed 3` once into a temporary folder
-// (derived suites that need more call SimulateBlock() first in their own SetUpTestSuite).
+// Base fixture: SetUpTestSuite puts the block of `sacfuse simulate --preset tiny --seed 3` into a temporary folder
+// (derived suites that need more call SimulateBlock() first in their own SetUpTestSuite): a copy of the one block
+// every suite shares, simulated once per build of the binary (kept beside it in <build>/test-blocks), so each suite
+// may change its copy.
 class TinyBlockSuite : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { SimulateBlock(); }
