@@ -17,7 +17,6 @@
 #include "io/crs_wkt.h"
 #include "io/las_copy.h"
 #include "io/las_reader.h"
-#include "tests/support/block_suite.h"
 #include "tests/support/las_js_readers.h"
 
 namespace sacfuse {
@@ -32,18 +31,9 @@ using testing::las_js::DecodeLaz;
 using testing::las_js::ExpectValid;
 using testing::las_js::LasJsDir;
 using testing::las_js::LasPointRecords;
-using testing::las_js::ReaderUnavailable;
 using testing::las_js::SortedPointRecords;
 
-class CopcJsRunTest : public testing::TinyBlockSuite {
- protected:
-  static void SetUpTestSuite() {
-    if (!ReaderUnavailable()) SimulateBlock();
-  }
-  static fs::path WriteConfig(const std::string& name, const std::string& output_extra, const std::string& extra) {
-    return testing::las_js::WriteCrsRunConfig(Config(name), Block(), Out(name), output_extra, extra);
-  }
-};
+class CopcJsRunTest : public testing::las_js::RunSuite {};
 
 // Runs tests/las_js/read_copc.mjs on `copc`: the npm package copc (copc.js) walks the hierarchy from the info VLR's
 // root page and decodes every node's chunk alone; returns its JSON (the records, node after node, are in

@@ -29,7 +29,6 @@
 #include "io/las_reader.h"
 #include "io/las_writer.h"
 #include "io/wkt1.h"
-#include "tests/support/block_suite.h"
 #include "tests/support/las_js_readers.h"
 
 namespace sacfuse {
@@ -45,7 +44,6 @@ using testing::las_js::DecodeLaz;
 using testing::las_js::ExpectValid;
 using testing::las_js::LasJsDir;
 using testing::las_js::LasPointRecords;
-using testing::las_js::ReaderUnavailable;
 using testing::las_js::SortedPointRecords;
 
 // Runs tests/las_js/read_las.mjs on `las` and returns its JSON.
@@ -314,14 +312,8 @@ TEST(LasJsReaderTest, LazPerfAndLazRsDecodeAFileOfCopiedChunks) {
   }
 }
 
-class LasJsRunTest : public testing::TinyBlockSuite {
+class LasJsRunTest : public testing::las_js::RunSuite {
  protected:
-  static void SetUpTestSuite() {
-    if (!ReaderUnavailable()) SimulateBlock();
-  }
-  static fs::path WriteConfig(const std::string& name, const std::string& output_extra, const std::string& extra) {
-    return testing::las_js::WriteCrsRunConfig(Config(name), Block(), Out(name), output_extra, extra);
-  }
   static void CheckFile(const fs::path& las, const Crs& crs, int minor) {
     SCOPED_TRACE(las.string());
     LasHeader h;

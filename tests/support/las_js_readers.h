@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/las_reader.h"
+#include "tests/support/block_suite.h"
 #include "tests/support/test_support.h"
 
 namespace sacfuse::testing {
@@ -106,16 +107,21 @@ inline std::string SortedPointRecords(const fs::path& las) {
   return sorted;
 }
 
-// A run config of the suites that read runs' files (crs EPSG:25832): `output_extra` goes inside `output: {...}`,
-// `extra` after it (whole lines).
-inline fs::path WriteCrsRunConfig(const fs::path& config, const fs::path& block, const fs::path& out,
-                                  const std::string& output_extra, const std::string& extra) {
-  std::ofstream(config) << "crs: EPSG:25832\n"
-                        << "input: {format: colmap, path: " << block.string() << "}\n"
-                        << "output: {dir: " << out.string() << output_extra << "}\n"
-                        << extra;
-  return config;
-}
+// The suites that read the files of `sacfuse run` on the tiny block: the block (when the readers can run) and run
+// configs with crs EPSG:25832; `output_extra` goes inside `output: {...}`, `extra` after it (whole lines).
+class RunSuite : public TinyBlockSuite {
+ protected:
+  static void SetUpTestSuite() {
+    if (!ReaderUnavailable()) SimulateBlock();
+  }
+  static fs::path WriteConfig(const std::string& name, const std::string& output_extra, const std::string& extra) {
+    std::ofstream(Config(name)) << "crs: EPSG:25832\n"
+                                << "input: {format: colmap, path: " << Block().string() << "}\n"
+                                << "output: {dir: " << Out(name).string() << output_extra << "}\n"
+                                << extra;
+    return Config(name);
+  }
+};
 
 }  // namespace las_js
 }  // namespace sacfuse::testing
