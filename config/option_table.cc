@@ -171,6 +171,9 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
            "outliers: min views (own included) agreeing with a point");
   s.AddDouble("fusion.outlier_expected_factor", &f.outlier_expected_factor, Affects("-", AtLeast(0), kSac),
               "outliers: with estimated noise, ask at most 1 + this x the expected agreeing views (0 = off)");
+  s.AddInt("fusion.weak_support_min_views", &f.weak_support_min_views, Affects("views", Closed(0, 64), kSac),
+           "outliers: views (own included) a point needs where a view that could see it (not occluded) has no depth "
+           "there; at most 1 + the views that could see it (0 = off; 3 for raw single-pair stereo depth maps)");
   s.AddDouble("fusion.correspondence_tolerance_sigmas", &f.correspondence_tolerance_sigmas,
               Affects("sigma", AtLeast(0), kSac),
               "reprojection correspondences: also agree within this many sigmas of estimated noise (0 = off)");

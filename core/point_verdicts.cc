@@ -19,36 +19,58 @@ namespace {
 
 constexpr size_t kMaxJudgingViews = 64;  // SacOptions.max_neighbor_views is at most 64
 
+// Whether view b, whose depth map has no depth where X projects (`hit`), failed to match X's surface rather than
+// being occluded there: no valid depth within kDepthEdgeReachPx pixels lies in front of X by more than `tolerance`
+// (an occluder's invalid band behind its edge is that wide at most; core/depth_edge.h).
+bool UnmatchedAt(const SacView& b, const DepthLookup& hit, double tolerance) {
+  const double near_m = hit.z_m - tolerance;
+  return !AnyDepthInWindow(*b.depth, hit.row, hit.col, kDepthEdgeReachPx,
+                           [&](float q) { return IsValidDepth(q) && q < near_m; });
+}
+
 // `hits[k]`: the point looked up in neighbors[k].
 bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, const std::vector<uint32_t>& neighbors,
                        const DepthLookup* hits, const std::vector<double>& noise_factor, const SacOptions& options) {
   if (options.min_consistent_views <= 1) return true;
   // Views that can observe the point: they agree, or they see through it (free space). Views where it is occluded
-  // (their surface lies in front) cannot judge it and are not counted.
-  int agree = 1, observers = 0;
+  // (their surface lies in front) cannot judge it and are not counted. Unmatched views could observe it but have no
+  // depth there (weak support).
+  int agree = 1, observers = 0, unmatched = 0;
+  const bool weak_support = options.weak_support_min_views > 0;
   double expected_agree = 0.0;  // with estimated noise: sum of P(|difference| <= tolerance) over the observers
   const bool noise_aware = !noise_factor.empty() && options.outlier_expected_factor > 0;
   const double sigma_own = noise_aware ? DepthSigmaM(views, noise_factor, v, d) : 0.0;
   for (size_t k = 0; k < neighbors.size(); ++k) {
     const uint32_t b = neighbors[k];
     const DepthLookup& hit = hits[k];
-    if (!hit.inside || !IsValidDepth(hit.stored_depth_m)) continue;
+    if (!hit.inside) continue;
+    const bool valid = IsValidDepth(hit.stored_depth_m);
+    if (!valid && !weak_support) continue;
     const double tolerance = DepthToleranceM(views[b], hit.z_m, options);
-    bool observes = false;
-    if (std::abs(hit.stored_depth_m - hit.z_m) <= tolerance) {
-      ++agree;
-      observes = true;
-    } else if (hit.stored_depth_m > hit.z_m + tolerance) {
-      observes = true;
+    if (!valid) {
+      if (!UnmatchedAt(views[b], hit, tolerance)) continue;
+      ++unmatched;
+    } else {
+      bool observes = false;
+      if (std::abs(hit.stored_depth_m - hit.z_m) <= tolerance) {
+        ++agree;
+        observes = true;
+      } else if (hit.stored_depth_m > hit.z_m + tolerance) {
+        observes = true;
+      }
+      if (!observes) continue;
+      ++observers;
     }
-    if (!observes) continue;
-    ++observers;
     if (noise_aware) {
       const double sigma_b = DepthSigmaM(views, noise_factor, b, hit.z_m);
       expected_agree += std::erf(tolerance / (PairSigmaM(sigma_own, sigma_b) * std::sqrt(2.0)));
     }
   }
   int required = std::min(options.min_consistent_views, std::max(2, 1 + observers));
+  if (unmatched > 0) {
+    required = std::max(required, std::min({options.min_consistent_views, options.weak_support_min_views,
+                                            1 + observers + unmatched}));
+  }
   if (noise_aware) {
     // Noisy depth maps rarely agree within the strict tolerance: ask no more than the noise lets agree.
     required = std::min(

@@ -9,6 +9,13 @@
 //    the point; neighbours in which it is occluded cannot judge it. With estimated noise the requirement is also
 //    capped at max(2, 1 + round(outlier_expected_factor x E)), E = the expected number of agreeing observers, sum of
 //    erf(tolerance / (sqrt(2) sigma of the two depths' difference)).
+//    Weak support: a neighbour that could observe X but has no depth at its projection, and no valid depth in front
+//    of X within kDepthEdgeReachPx pixels (so X is not occluded there, core/depth_edge.h), is *unmatched*. Where a
+//    neighbour is unmatched, X must agree with weak_support_min_views depth maps (off by default; 3 for raw stereo
+//    output), at most min_consistent_views and 1 + observers + unmatched (a surface only one other view can see
+//    still passes with that view). Unmatched views count in E as observers do. Why: a raw stereo depth and its partner view's depth come from the same match
+//    and share its errors, so a blunder of single-pair depths in shadow or at the rim of what the matcher could match
+//    "agrees" with one view while the others found nothing (Brighton Beach raw maps, docs/design.md).
 //  * Free space (visibility, Merrell et al., ICCV 2007): X is dropped when at least free_space_min_views of the
 //    judging views (the combine views, up to 40) see through it: their depth at X's projection lies beyond X by more
 //    than the tolerance and more than free_space_sigmas sigma of the two depths' difference, so X floats in space

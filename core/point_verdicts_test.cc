@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <tbb/parallel_for.h>
 
+#include "core/method_views.h"
 #include "core/redundancy.h"
 #include "core/sac_fusion.h"
 #include "core/sac_nodes.h"
@@ -18,6 +19,7 @@ namespace {
 
 using testing::CollectingSink;
 using testing::kEast;
+using testing::kGroundZ;
 using testing::kNorth;
 using testing::NadirView;
 using testing::PlaneDepth;
@@ -318,6 +320,112 @@ TEST(RedundancyTest, BetterViewWhosePixelIsDroppedDoesNotMakeAHole) {
   // And a fine pixel whose Netlet chose the coarse view does not count either (it is collapsed by the Netlet rule).
   const NodeLabels all_coarse(std::vector<uint32_t>(nodes.nodes.size(), 1));
   EXPECT_FALSE(BetterViewEmits(views, 1, centre, 500.0, others[1], {}, nodes, all_coarse, verdicts, options));
+}
+
+
+// Weak support. Four nadir views 500 m above the plane (GSD 1/6 m), at 0, +4, +8 and -4 m east. A 2 m square patch
+// 3 m above the plane (a matcher's blunder: views 0 and 1 share it, as the two views of one stereo pair do) lies
+// where views 2 and 3 found no depth (a 6 m square hole around it). Views 2 and 3 could see the patch: they are
+// unmatched there, so the patch needs 3 agreeing depth maps and has 2. Where an occluder lies in front of it within
+// the window (the hole is an occlusion), or where weak support is off, the patch passes as before. At view 0's west
+// edge the plane is seen by view 3 alone (views 1 and 2 look elsewhere): one other view is all that can confirm it,
+// so it passes.
+class WeakSupportTest : public ::testing::Test {
+ protected:
+  static constexpr double kAltitudeM = 500.0;
+  static constexpr double kPatchRiseM = 3.0;
+  static constexpr int kSpikeRow = 45, kSpikeCol = 72;  // on the patch in view 0
+  static constexpr int kEdgeRow = 45, kEdgeCol = 8;     // view 0's plane 8.5 m west of its centre
+
+  // Raises the depths of `view` that look at the square [x0, x1] x [y0, y1] (offsets east / north of the scene
+  // origin, metres) lifted by kPatchRiseM; invalidates (hole) those whose plane point lies in [hx0, hx1] x [hy0, hy1]
+  // and not on the patch.
+  static DepthMap Render(const View& view, bool patch, bool hole) {
+    DepthMap depth = PlaneDepth(view);
+    const Rigid3d world_from_cam = view.cam_from_world.Inverse();
+    for (int r = 0; r < depth.height; ++r) {
+      for (int c = 0; c < depth.width; ++c) {
+        const Eigen::Vector3d ray = world_from_cam.rotation * view.camera.Unproject(c + 0.5, r + 0.5, 1.0);
+        const double t_patch = (kGroundZ + kPatchRiseM - world_from_cam.translation.z()) / ray.z();
+        const Eigen::Vector3d on_patch = world_from_cam.translation + t_patch * ray;
+        const double px = on_patch.x() - kEast, py = on_patch.y() - kNorth;
+        if (patch && px >= 1.0 && px <= 3.0 && py >= -1.0 && py <= 1.0) {
+          depth.at(r, c) = static_cast<float>(t_patch);
+          continue;
+        }
+        const double t = depth.at(r, c);
+        const Eigen::Vector3d on_plane = world_from_cam.translation + t * ray;
+        const double gx = on_plane.x() - kEast, gy = on_plane.y() - kNorth;
+        if (hole && gx >= -1.0 && gx <= 5.0 && gy >= -3.0 && gy <= 3.0) depth.at(r, c) = 0.0f;
+      }
+    }
+    return depth;
+  }
+
+  static SyntheticBlock Block() {
+    SyntheticBlock block;
+    const double east_offset_m[4] = {0.0, 4.0, 8.0, -4.0};
+    for (uint32_t i = 0; i < 4; ++i) {
+      const View view = NadirView(i, kEast + east_offset_m[i], kNorth, kAltitudeM);
+      block.Add(view, Render(view, /*patch=*/i <= 1, /*hole=*/i >= 2));
+    }
+    return block;
+  }
+
+  static SacOptions WeakSupport() {
+    SacOptions options;
+    options.weak_support_min_views = 3;
+    return options;
+  }
+
+  static PointVerdict VerdictAt(const SyntheticBlock& block, const SacOptions& options, int row, int col) {
+    const std::vector<SacView> views = block.SacViews();
+    const std::vector<std::vector<uint32_t>> others = AllOthers(views.size());
+    return PointVerdicts(views, others, ConsultedViews(others), {}, options).At(0, row, col);
+  }
+};
+
+TEST_F(WeakSupportTest, ABlunderOnlyItsPartnerConfirmsIsRemovedWhereOtherViewsFoundNothing) {
+  const SyntheticBlock block = Block();
+  SacOptions defaults;
+  ASSERT_EQ(defaults.weak_support_min_views, 0);  // off by default
+  defaults.weak_support_min_views = 3;
+  ASSERT_NEAR(block.depths[0].at(kSpikeRow, kSpikeCol), kAltitudeM - kPatchRiseM, 1e-3);  // on the patch
+  EXPECT_EQ(VerdictAt(block, defaults, kSpikeRow, kSpikeCol), PointVerdict::kOutlier);
+  SacOptions off = defaults;
+  off.weak_support_min_views = 0;
+  EXPECT_EQ(VerdictAt(block, off, kSpikeRow, kSpikeCol), PointVerdict::kPasses);  // view 1 agrees: 2 of 2 asked
+  // The plane west of the hole, seen and confirmed by views 1 and 3: 3 agreeing maps, it passes.
+  EXPECT_EQ(VerdictAt(block, defaults, 45, 40), PointVerdict::kPasses);
+}
+
+TEST_F(WeakSupportTest, AHoleBesideAnOccluderIsNoMissingSupport) {
+  SyntheticBlock block = Block();
+  const std::vector<SacView> views = block.SacViews();
+  const Eigen::Vector3d spike =
+      PixelPoint(views[0], kSpikeRow, kSpikeCol, block.depths[0].at(kSpikeRow, kSpikeCol));
+  for (uint32_t b : {2u, 3u}) {
+    // A valid depth 100 m in front of the spike 5 pixels from its projection: the hole may be its occlusion.
+    const DepthLookup hit = ProjectIntoDepth(views[b], views[b].PointInCamera(spike));
+    ASSERT_TRUE(hit.inside);
+    ASSERT_EQ(block.depths[b].at(hit.row, hit.col), 0.0f);
+    block.depths[b].at(hit.row, hit.col + 5) = static_cast<float>(hit.z_m - 100.0);
+  }
+  EXPECT_EQ(VerdictAt(block, WeakSupport(), kSpikeRow, kSpikeCol), PointVerdict::kPasses);
+}
+
+TEST_F(WeakSupportTest, ASurfaceOnlyOneOtherViewSeesAtTheBlockEdgeIsKept) {
+  SyntheticBlock block = Block();
+  const std::vector<SacView> views = block.SacViews();
+  const Eigen::Vector3d edge = PixelPoint(views[0], kEdgeRow, kEdgeCol, block.depths[0].at(kEdgeRow, kEdgeCol));
+  ASSERT_FALSE(ProjectIntoDepth(views[1], views[1].PointInCamera(edge)).inside);
+  ASSERT_FALSE(ProjectIntoDepth(views[2], views[2].PointInCamera(edge)).inside);
+  ASSERT_TRUE(ProjectIntoDepth(views[3], views[3].PointInCamera(edge)).inside);
+  EXPECT_EQ(VerdictAt(block, WeakSupport(), kEdgeRow, kEdgeCol), PointVerdict::kPasses);
+  // Where view 3 has no depth either, nothing confirms it (as before).
+  const DepthLookup in3 = ProjectIntoDepth(views[3], views[3].PointInCamera(edge));
+  block.depths[3].at(in3.row, in3.col) = 0.0f;
+  EXPECT_EQ(VerdictAt(block, WeakSupport(), kEdgeRow, kEdgeCol), PointVerdict::kOutlier);
 }
 
 }  // namespace
