@@ -126,6 +126,11 @@ void CheckCrossKeyRules(const JobConfig& c, std::vector<OptionError>* errors) {
                        "must divide tiling.tile_size_m (" + Number(c.tiling.tile_size_m) +
                            ") into whole cells, so that tiles share the DSM's cells"});
   }
+  if (c.output.ortho == "on" && !DsmWanted(c)) {
+    errors->push_back({"output.ortho", c.output.ortho,
+                       "the true orthophoto is made on the DSM: set output.dsm on (or crs, for output.dsm auto), or "
+                       "output.ortho auto | off"});
+  }
   if (c.tiling.tile_size_m > 0 && method == FusionMethodKind::kSac && c.fusion.sac.correspondence == "dense") {
     errors->push_back({"fusion.correspondence", c.fusion.sac.correspondence,
                        "dense is not supported by tiled runs yet (tiling.tile_size_m > 0); use reprojection or "
@@ -173,6 +178,8 @@ bool DsmWanted(const JobConfig& config) {
   if (config.output.dsm == "off") return false;
   return config.crs.find_first_not_of(" \t") != std::string::npos;
 }
+
+bool OrthoWanted(const JobConfig& config) { return config.output.ortho != "off" && DsmWanted(config); }
 
 void ValidateJobConfig(const JobConfig& c) {
   const std::vector<OptionError> errors = JobConfigErrors(c);

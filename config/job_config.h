@@ -49,6 +49,9 @@ struct OutputOptions {
   double dsm_cell_m = 0.0;              // cell edge, metres; 0 = automatic (2 x the block's GSD, rounded)
   double dsm_max_hole_m = 2.0;          // holes up to this size (m, each side) are filled from their rim
   std::string raster_layout = "auto";   // auto | single (one COG) | tiles (COG blocks + a VRT)
+  // The true orthophoto on the DSM's cells (docs/dsm-and-ortho.md; jobs/ortho_product.h): DIR/ortho.tif, an RGBA
+  // 8-bit Cloud Optimized GeoTIFF (or DIR/ortho.vrt over DIR/ortho/*.tif, as the DSM's raster_layout).
+  std::string ortho = "auto";           // auto (on when the run writes the DSM) | on | off
 };
 
 struct FusionOptions {
@@ -104,6 +107,9 @@ struct JobConfig {
 // Whether the run writes the DSM: output.dsm on, or auto with a project CRS (a run in a CRS-less local frame, e.g.
 // an SfM reconstruction whose z need not point up, gets no DSM unless asked for).
 bool DsmWanted(const JobConfig& config);
+// Whether the run writes the true orthophoto: output.ortho auto or on, and the run writes the DSM (the ortho is made
+// on the DSM's cells and tested for occlusion against it; `on` without a DSM is a config error).
+bool OrthoWanted(const JobConfig& config);
 
 // Reads, type-checks and validates a YAML config, with `overrides` (the command line's --set ...) applied on top
 // before validation. Unknown keys, wrong types and out-of-range values throw ConfigError naming the file, line (or

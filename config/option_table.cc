@@ -90,8 +90,13 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "DSM holes up to this size, metres on each side, are filled from their rim; larger ones stay nodata "
               "(0 = none filled)");
   s.AddString("output.raster_layout", &c->output.raster_layout, Neutral("-", Choices({"auto", "single", "tiles"})),
-              "raster products: single (one COG) | tiles (COG blocks in DIR/dsm/ and DIR/dsm.vrt) | auto (tiles "
+              "raster products: single (one COG) | tiles (COG blocks in DIR/dsm/ + DIR/dsm.vrt, DIR/ortho/ + DIR/ortho.vrt) "
+              "| auto (tiles "
               "beyond 2^30 cells)");
+  s.AddString("output.ortho", &c->output.ortho, Neutral("-", Choices({"auto", "on", "off"})),
+              "true orthophoto DIR/ortho.tif (RGBA 8-bit Cloud Optimized GeoTIFF on the DSM's cells, each cell from "
+              "an original image of the view SAC selected, occlusion tested against the DSM): auto (on when the "
+              "DSM is written) | on | off");
   CoregistrationOptions& co = c->coregistration;  // every method: a block-level stage before tiling
   s.AddBool("coregistration.enabled", &co.enabled, Affects("-", {}),
             "correct every view's pose against its neighbours' depth maps before fusion (core/coregistration.h)");

@@ -30,6 +30,9 @@ std::string ReportDir(const JobConfig& config) { return InOutputDir(config, "rep
 std::string DsmPath(const JobConfig& config) { return InOutputDir(config, "dsm.tif"); }
 std::string DsmVrtPath(const JobConfig& config) { return InOutputDir(config, "dsm.vrt"); }
 std::string DsmBlocksDir(const JobConfig& config) { return InOutputDir(config, "dsm"); }
+std::string OrthoPath(const JobConfig& config) { return InOutputDir(config, "ortho.tif"); }
+std::string OrthoVrtPath(const JobConfig& config) { return InOutputDir(config, "ortho.vrt"); }
+std::string OrthoBlocksDir(const JobConfig& config) { return InOutputDir(config, "ortho"); }
 
 std::string SuperpixelCacheDir(const JobConfig& config) {
   return config.fusion.superpixel_cache_dir.empty() ? InOutputDir(config, "superpixels")

@@ -17,6 +17,8 @@
 //   DIR/tiles/                  per-tile state of tiled runs (tiles/tile_manifest.h, tiles/tile_marker.h)
 //   DIR/dsm.tif                 the DSM (output.dsm), one Cloud Optimized GeoTIFF (jobs/dsm_product.h), or
 //   DIR/dsm.vrt + DIR/dsm/      a VRT over COG blocks (output.raster_layout)
+//   DIR/ortho.tif               the true orthophoto (output.ortho; jobs/ortho_product.h), or
+//   DIR/ortho.vrt + DIR/ortho/  a VRT over COG blocks, as the DSM
 //   DIR/report/                 the HTML report (report/report_writer.h)
 //   DIR/superpixels/            superpixel and colour caches (or fusion.superpixel_cache_dir; jobs/superpixel_cache.h)
 #include <string>
@@ -43,6 +45,9 @@ std::string ReportDir(const JobConfig& config);  // the default report folder (`
 std::string DsmPath(const JobConfig& config);       // DIR/dsm.tif
 std::string DsmVrtPath(const JobConfig& config);    // DIR/dsm.vrt
 std::string DsmBlocksDir(const JobConfig& config);  // DIR/dsm
+std::string OrthoPath(const JobConfig& config);       // DIR/ortho.tif
+std::string OrthoVrtPath(const JobConfig& config);    // DIR/ortho.vrt
+std::string OrthoBlocksDir(const JobConfig& config);  // DIR/ortho
 
 // The superpixel (and colour) cache folder of a job: fusion.superpixel_cache_dir, or <output.dir>/superpixels.
 std::string SuperpixelCacheDir(const JobConfig& config);

@@ -9,6 +9,9 @@
 #include "eval/eval.h"
 #include "eval/eval_options.h"
 #include "eval/eval_report_json.h"
+#include "eval/ortho_accuracy.h"
+#include "core/error.h"
+#include "io/gdal_raster.h"
 
 namespace sacfuse {
 
@@ -63,6 +66,17 @@ EvalReport RunEvaluation(const EvalRequest& request, std::ostream& out) {
     dsm.gsd_m = request.gsd_m;
     report.dsm = EvaluateDsm(dsm);
     out << FormatDsmAccuracy(*report.dsm);
+  }
+  if (request.ortho.empty() != request.ortho_reference.empty()) {
+    throw ConfigError("--ortho and --ortho-reference go together");
+  }
+  if (!request.ortho.empty()) {
+    const CellWindow window =
+        RasterFile(request.ortho).window().Intersection(RasterFile(request.ortho_reference).window());
+    if (window.empty()) throw InputError(request.ortho, "does not overlap " + request.ortho_reference);
+    const RgbaGrid reference = ReadRgbaGrid(request.ortho_reference, window);
+    out << FormatOrthoScores({ScoreOrtho("true ortho", ReadRgbaGrid(request.ortho, window), reference),
+                              ScoreOrtho("point colours", PointColourOrtho(request.result_las, window), reference)});
   }
   if (!request.json_path.empty()) {
     WriteEvalReportJson(report, request.json_path);

@@ -20,6 +20,10 @@ struct EvalRequest {
   std::string json_path;                  // "" = no JSON
   double max_result_points = 0;           // score every k-th point beyond this many (0 = all; EvalOptions)
   std::string dsm;                        // a DSM raster to score too (eval/dsm_accuracy.h); "" = none
+  // An RGBA orthophoto to score against ortho_reference, beside the ortho of the result's point colours
+  // (eval/ortho_accuracy.h); "" = none (both or neither).
+  std::string ortho;
+  std::string ortho_reference;
 };
 
 // The scoring a job config asks for (evaluation.*), of `result_las` (and of the run's DSM when it wrote one), with

@@ -74,6 +74,7 @@ class CslOptions {
     for (const auto& [key, value] : items) list_ = CSLSetNameValue(list_, key, value.c_str());
   }
   ~CslOptions() { CSLDestroy(list_); }
+  void Set(const char* key, const std::string& value) { list_ = CSLSetNameValue(list_, key, value.c_str()); }
   CslOptions(const CslOptions&) = delete;
   CslOptions& operator=(const CslOptions&) = delete;
   char** get() const { return list_; }
@@ -83,6 +84,13 @@ class CslOptions {
 };
 
 std::string Predictor(RasterSampleType type) { return type == RasterSampleType::kFloat32 ? "3" : "2"; }
+
+// GeoTIFF creation options of an RGBA product: RGB photometric with an unassociated alpha sample.
+void AddColourOptions(const RasterFormat& format, CslOptions* options) {
+  if (!format.rgba || format.bands != 4) return;
+  options->Set("PHOTOMETRIC", "RGB");
+  options->Set("ALPHA", "YES");
+}
 
 void Describe(GDALDataset& d, const CellWindow& window, const RasterFormat& format, const std::string& path) {
   std::array<double, 6> gt = {window.west(), window.cell_m, 0.0, window.north(), 0.0, -window.cell_m};
@@ -99,6 +107,10 @@ void Describe(GDALDataset& d, const CellWindow& window, const RasterFormat& form
     if (format.nodata) band->SetNoDataValue(*format.nodata);
     if (static_cast<size_t>(b) <= format.band_descriptions.size()) {
       band->SetDescription(format.band_descriptions[b - 1].c_str());
+    }
+    if (format.rgba && format.bands == 4) {
+      static constexpr GDALColorInterp kRgba[4] = {GCI_RedBand, GCI_GreenBand, GCI_BlueBand, GCI_AlphaBand};
+      band->SetColorInterpretation(kRgba[b - 1]);
     }
   }
 }
@@ -184,9 +196,10 @@ void WriteRasterFile(const std::string& path, const CellWindow& window, const Ra
     return;
   }
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
-  const CslOptions options{{"TILED", "YES"},       {"BLOCKXSIZE", "256"},
+  CslOptions options{{"TILED", "YES"},       {"BLOCKXSIZE", "256"},
                            {"BLOCKYSIZE", "256"},  {"COMPRESS", "DEFLATE"},
                            {"PREDICTOR", Predictor(format.type)}, {"BIGTIFF", "IF_SAFER"}};
+  AddColourOptions(format, &options);
   const std::string temp = TemporaryPathFor(path);
   try {
     CPLErrorReset();
@@ -224,9 +237,10 @@ CogBuilder::CogBuilder(const std::string& path, const CellWindow& extent, const 
   if (!fs::path(path).parent_path().empty()) fs::create_directories(fs::path(path).parent_path());
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
   // Fast compression: this file lives only until the COG is written.
-  const CslOptions options{{"TILED", "YES"},        {"BLOCKXSIZE", "512"}, {"BLOCKYSIZE", "512"},
+  CslOptions options{{"TILED", "YES"},        {"BLOCKXSIZE", "512"}, {"BLOCKYSIZE", "512"},
                            {"COMPRESS", "DEFLATE"}, {"ZLEVEL", "1"},       {"PREDICTOR", Predictor(format.type)},
                            {"BIGTIFF", "IF_SAFER"}, {"SPARSE_OK", "TRUE"}};
+  AddColourOptions(format, &options);
   CPLErrorReset();
   impl_->dataset.reset(gtiff->Create(impl_->temp.c_str(), static_cast<int>(extent.cols), static_cast<int>(extent.rows),
                                      format.bands, GdalType(format.type), options.get()));

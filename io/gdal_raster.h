@@ -35,6 +35,7 @@ struct RasterFormat {
   std::string crs_wkt;             // "" = no CRS
   std::string overview_resampling = "AVERAGE";  // GDAL resampling of COG overviews
   std::vector<std::string> band_descriptions;   // optional, one per band
+  bool rgba = false;  // 4 byte bands read as red, green, blue and alpha (the alpha band masks the others)
 };
 
 size_t SampleBytes(RasterSampleType type);

@@ -79,16 +79,27 @@ size_t PointCloudFile::Read(CloudChunk* chunk, size_t max_points) {
     const size_t n = impl_->las->Read(&impl_->las_buffer, max_points);
     chunk->xyz.resize(n);
     chunk->classification.resize(n);
+    chunk->source_id.resize(n);
+    chunk->rgb.resize(n);
     for (size_t i = 0; i < n; ++i) {
-      chunk->xyz[i] = impl_->las_buffer[i].xyz + impl_->shift;
-      chunk->classification[i] = impl_->las_buffer[i].classification;
+      const LasPoint& p = impl_->las_buffer[i];
+      chunk->xyz[i] = p.xyz + impl_->shift;
+      chunk->classification[i] = p.classification;
+      chunk->source_id[i] = p.point_source_id;
+      chunk->rgb[i] = {static_cast<uint8_t>(p.rgb[0] >> 8), static_cast<uint8_t>(p.rgb[1] >> 8),
+                       static_cast<uint8_t>(p.rgb[2] >> 8)};
     }
     return n;
   }
   const size_t n = impl_->ply->Read(&impl_->ply_buffer, max_points);
   chunk->xyz.resize(n);
   chunk->classification.assign(n, 0);
-  for (size_t i = 0; i < n; ++i) chunk->xyz[i] = impl_->ply_buffer[i].xyz + impl_->shift;
+  chunk->source_id.assign(n, 0);
+  chunk->rgb.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    chunk->xyz[i] = impl_->ply_buffer[i].xyz + impl_->shift;
+    chunk->rgb[i] = impl_->ply_buffer[i].rgb;
+  }
   return n;
 }
 

@@ -2,6 +2,7 @@
 // Any point cloud a user hands to `sacfuse dsm` or `sacfuse eval`: LAS/LAZ (io/las_reader.h) or binary PLY
 // (io/ply_reader.h: COLMAP's fused.ply, Open3D's clouds), read in chunks of coordinates (plus the LAS
 // classification), with an optional shift added to every point (PLY clouds written in a local frame).
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -19,6 +20,8 @@ constexpr size_t kCloudReadChunkPoints = size_t{1} << 16;
 struct CloudChunk {
   std::vector<Eigen::Vector3d> xyz;     // metres, in the file's CRS (plus the shift)
   std::vector<uint8_t> classification;  // LAS classification; 0 (never classified) for PLY
+  std::vector<uint16_t> source_id;      // LAS point source ID (sacfuse: view index + 1); 0 for PLY
+  std::vector<std::array<uint8_t, 3>> rgb;  // 8-bit colour (LAS: the 16-bit colour's high byte); 0 when none
 };
 
 class PointCloudFile {

@@ -1,6 +1,7 @@
 #include "io/raster_assembly.h"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <optional>
 #include <set>
@@ -31,11 +32,8 @@ bool RasterLayoutIsBlocks(const std::string& layout, const CellWindow& extent) {
   return extent.size() > kSingleFileMaxCells;
 }
 
-AssemblyStats AssembleRaster(const CellWindow& extent, int64_t halo_cells, const RawCellReader& read_raw,
-                             const CellFinisher& finish, const RasterFormat& format, const RasterOutput& output) {
-  if (format.bands != 1 || format.type != RasterSampleType::kFloat32) {
-    throw Error("AssembleRaster: single-band float32 products only");
-  }
+AssemblyStats AssembleRasterBlocks(const CellWindow& extent, const BlockMaker& make, const RasterFormat& format,
+                                   const RasterOutput& output) {
   AssemblyStats stats;
   stats.cells = extent.size();
   const std::vector<CellBlock> blocks = CellBlocksOf(extent, kAssemblyBlockCells);
@@ -43,15 +41,15 @@ AssemblyStats AssembleRaster(const CellWindow& extent, int64_t halo_cells, const
   if (!output.blocks) cog.emplace(output.single_path, extent, format);
   std::set<std::string> written;
   for (const CellBlock& block : blocks) {
-    const CellWindow outer = block.window.Grown(halo_cells);
-    std::vector<float> values = finish(read_raw(outer), outer, block.window);
-    for (const float v : values) stats.cells_with_value += std::isnan(v) ? 0 : 1;
-    ToNodata(&values, format);
+    const std::vector<uint8_t> data = make(block.window, &stats.cells_with_value);
+    if (data.size() != block.window.size() * SampleBytes(format.type) * static_cast<size_t>(format.bands)) {
+      throw Error("AssembleRasterBlocks: a block of the wrong size");
+    }
     if (cog) {
-      cog->Write(block.window, values.data());
+      cog->Write(block.window, data.data());
     } else {
       const std::string path = (fs::path(output.blocks_dir) / BlockName(block)).string();
-      WriteRasterFile(path, block.window, format, values.data(), RasterLayout::kCog);
+      WriteRasterFile(path, block.window, format, data.data(), RasterLayout::kCog);
       written.insert(path);
       stats.files.push_back(path);
     }
@@ -70,6 +68,23 @@ AssemblyStats AssembleRaster(const CellWindow& extent, int64_t halo_cells, const
   }
   stats.files.insert(stats.files.begin(), output.vrt_path);
   return stats;
+}
+
+AssemblyStats AssembleRaster(const CellWindow& extent, int64_t halo_cells, const RawCellReader& read_raw,
+                             const CellFinisher& finish, const RasterFormat& format, const RasterOutput& output) {
+  if (format.bands != 1 || format.type != RasterSampleType::kFloat32) {
+    throw Error("AssembleRaster: single-band float32 products only");
+  }
+  const BlockMaker make = [&](const CellWindow& block, uint64_t* cells_with_value) {
+    const CellWindow outer = block.Grown(halo_cells);
+    std::vector<float> values = finish(read_raw(outer), outer, block);
+    for (const float v : values) *cells_with_value += std::isnan(v) ? 0 : 1;
+    ToNodata(&values, format);
+    std::vector<uint8_t> bytes(values.size() * sizeof(float));
+    std::memcpy(bytes.data(), values.data(), bytes.size());
+    return bytes;
+  };
+  return AssembleRasterBlocks(extent, make, format, output);
 }
 
 }  // namespace sacfuse

@@ -46,8 +46,18 @@ struct AssemblyStats {
   std::vector<std::string> files;  // written (the COG, or the VRT and its block files)
 };
 
-// Writes the single-band float32 product of `extent` (format.bands must be 1). Files of an earlier assembly in
-// `blocks_dir` that this one does not write are removed. Throws Error.
+// The finished cells of one block in the format's layout (bands one after the other, each north-up, the format's
+// sample type), adding to *cells_with_value the block's cells that have a value.
+using BlockMaker = std::function<std::vector<uint8_t>(const CellWindow& block, uint64_t* cells_with_value)>;
+
+// Writes any product of `extent` block by block (blocks of kAssemblyBlockCells, in CellBlocksOf order) into the
+// output's layout. Files of an earlier assembly in `blocks_dir` that this one does not write are removed. Throws
+// Error.
+AssemblyStats AssembleRasterBlocks(const CellWindow& extent, const BlockMaker& make, const RasterFormat& format,
+                                   const RasterOutput& output);
+
+// The single-band float32 products (format.bands must be 1): each block finished from its raw cells plus a halo;
+// NaN is written as the format's nodata value.
 AssemblyStats AssembleRaster(const CellWindow& extent, int64_t halo_cells, const RawCellReader& read_raw,
                              const CellFinisher& finish, const RasterFormat& format, const RasterOutput& output);
 

@@ -122,7 +122,8 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                             {"tiling_decision", {{"tile_size_m", s.tile_size_m}, {"reason", s.tiling_reason}}},
                             {"stage_wall_seconds",
                              {{"coregistration", s.coregistration.seconds}, {"superpixels", s.superpixel_seconds},
-                              {"tiles", s.tiles_seconds}, {"merge", s.merge_seconds}, {"dsm", s.dsm.seconds}}},
+                              {"tiles", s.tiles_seconds}, {"merge", s.merge_seconds}, {"dsm", s.dsm.seconds},
+                              {"ortho", s.ortho.seconds}}},
                             {"stages", StagesJson(s)},
                             {"views", views}};
   if (s.coregistration.enabled) {
@@ -149,6 +150,13 @@ void WriteRunReport(const RunSummary& s, const JobConfig& config) {
                 {"cells_with_value", d.cells_with_value}, {"cells_from_points", d.raw_cells_with_value},
                 {"cells_filled", d.cells_filled}, {"files", d.files},
                 {"seconds", d.seconds}};
+  }
+  if (s.ortho.written) {
+    const OrthoOutcome& o = s.ortho;
+    j["ortho"] = {{"file", o.path}, {"cols", o.cols}, {"rows", o.rows}, {"cells_coloured", o.cells_coloured},
+                  {"cells_selected_view", o.cells_selected_view}, {"cells_other_view", o.cells_other_view},
+                  {"cells_unseen", o.cells_unseen}, {"image_reads", o.image_reads}, {"files", o.files},
+                  {"seconds", o.seconds}, {"cpu_seconds", o.cpu_seconds}, {"peak_rss_mib", o.peak_rss_mib}};
   }
   // Warnings about the input, among them every default that replaced missing input data (io/input_warnings.h).
   j["warnings"] = InputWarningsGiven();
@@ -208,6 +216,7 @@ void RunTiled(const JobConfig& config, const DepthBlock& input, const RunProgres
   summary->tiles_seconds = tiled.tiles_seconds;
   summary->merge_seconds = tiled.merge_seconds;
   summary->dsm = tiled.dsm;
+  summary->ortho = tiled.ortho;
   summary->output_points = tiled.merged_points;
   for (auto& v : summary->views) {
     const size_t i = &v - summary->views.data();
@@ -268,6 +277,9 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   } else {
     RemoveDsmFiles(config);
   }
+  summary->ortho = MakeOrthoOfRun(config, input, summary->dsm,
+                                  summary->dsm.written ? std::vector<OrthoCloud>{FusedCloud(summary->las_path)}
+                                                       : std::vector<OrthoCloud>{});
   for (size_t i = 0; i < views.size(); ++i) {
     const uint32_t v = views[i].index;
     summary->views[i].output_points = v < fused.points_per_view.size() ? fused.points_per_view[v] : 0;

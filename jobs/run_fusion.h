@@ -14,6 +14,7 @@
 #include "core/sac_fusion.h"
 #include "jobs/coregistered_block.h"
 #include "jobs/dsm_product.h"
+#include "jobs/ortho_product.h"
 #include "jobs/output_lock.h"
 #include "io/las_writer.h"
 #include "io/stage_clock.h"
@@ -62,6 +63,7 @@ struct RunSummary {
   double total_cpu_seconds = 0.0;
   std::string eval_text;            // evaluation.reference set: the score table and F1 lines (eval/eval_runner.h)
   DsmOutcome dsm;                   // output.dsm: DIR/dsm.tif (jobs/dsm_product.h)
+  OrthoOutcome ortho;               // output.ortho: DIR/ortho.tif (jobs/ortho_product.h)
 };
 
 // Called as work proceeds: stage name, units done, units total.

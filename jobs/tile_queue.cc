@@ -99,6 +99,8 @@ MergeJobOutcome MergeJob(const JobConfig& given, OutputWriterLock& lock) {
   } else {
     RemoveDsmFiles(config);
   }
+  out.ortho = MakeOrthoOfRun(config, *input, out.dsm, out.dsm.written ? TiledRunClouds(config, plan)
+                                                                      : std::vector<OrthoCloud>{});
   return out;
 }
 

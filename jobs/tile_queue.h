@@ -10,6 +10,7 @@
 
 #include "config/job_config.h"
 #include "jobs/dsm_product.h"
+#include "jobs/ortho_product.h"
 #include "jobs/output_lock.h"
 #include "tiles/tile_merge.h"
 #include "tiles/tile_plan.h"
@@ -33,6 +34,7 @@ struct MergeJobOutcome {
   std::string fused_las_path;
   MergeResult merged;
   DsmOutcome dsm;  // output.dsm: the DSM assembled from the tiles (jobs/dsm_product.h)
+  OrthoOutcome ortho;  // output.ortho: the true orthophoto on the DSM (jobs/ortho_product.h)
 };
 
 // `sacfuse merge`: ConfigError unless the config is a tiled run. The caller holds the writer lock (recorded with

@@ -100,6 +100,8 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   } else {
     RemoveDsmFiles(config);
   }
+  out.ortho = MakeOrthoOfRun(config, input, out.dsm, out.dsm.written ? TiledRunClouds(config, plan)
+                                                                     : std::vector<OrthoCloud>{});
   return out;
 }
 

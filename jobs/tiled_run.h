@@ -23,6 +23,7 @@
 #include "io/stage_clock.h"
 #include "io/view_identity.h"
 #include "jobs/dsm_product.h"
+#include "jobs/ortho_product.h"
 #include "tiles/tile_plan.h"
 #include "tiles/tile_scheduler.h"
 
@@ -45,6 +46,7 @@ struct TiledRunOutcome {
   double tiles_seconds = 0.0;             // wall time of the tile stage (all workers)
   double merge_seconds = 0.0;
   DsmOutcome dsm;                         // the DSM assembled after the merge (output.dsm)
+  OrthoOutcome ortho;                     // the true orthophoto made on it (output.ortho)
 };
 
 // `rerun_ids` (already validated against TileIdsWithViews) are recomputed even when done; so is every tile whose

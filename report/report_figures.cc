@@ -36,6 +36,7 @@ std::string ReportFiguresToJson(const ReportFigures& f) {
   nlohmann::json j;
   j["map"] = MapJson(f.map);
   if (f.dsm.present) j["dsm"] = MapJson(f.dsm);
+  if (f.ortho.present) j["ortho"] = MapJson(f.ortho);
   j["profile"] = {
       {"present", p.present}, {"reason", p.reason}, {"before_file", p.before_file}, {"after_file", p.after_file},
       {"strip", {{"start", {s.start_xy.x(), s.start_xy.y()}}, {"end", {s.end_xy.x(), s.end_xy.y()}},
@@ -61,6 +62,7 @@ ReportFigures ReportFiguresFromJson(const std::string& text) {
   ReportFigures f;
   f.map = MapFromJson(j.at("map"));
   if (j.contains("dsm")) f.dsm = MapFromJson(j.at("dsm"));
+  if (j.contains("ortho")) f.ortho = MapFromJson(j.at("ortho"));
   const auto& p = j.at("profile");
   ProfileFigure& q = f.profile;
   q.present = p.at("present").get<bool>();

@@ -42,6 +42,7 @@ struct ProfileFigure {
 struct ReportFigures {
   MapFigure map;
   MapFigure dsm;                // the DSM's hill-shade thumbnail (output.dsm), points_scanned/cells_filled unused
+  MapFigure ortho;              // the true orthophoto's thumbnail (output.ortho), likewise
   ProfileFigure profile;
   double seconds = 0.0;         // time to make the figures
   double map_seconds = 0.0;     // of which streaming fused.las into the map

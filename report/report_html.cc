@@ -230,6 +230,13 @@ std::string MapSection(const ReportData& d, const ReportFigures& f, const std::v
       << Fixed(f.dsm.cell_m, 3) << " m, hill-shaded (light from the north-west) over a height tint; grey: no "
          "value.</p></div>";
   }
+  if (f.ortho.present) {
+    s << "<div><h3>True orthophoto</h3>" << MapSvg(f.ortho, f.profile, kDsmDisplayPx)
+      << "<p class='caption' style='max-width:" << Fixed(kDsmDisplayPx, 0) << "px'>The run's true orthophoto "
+         "(<code>ortho.tif</code>, or <code>ortho.vrt</code>) on the DSM's cells: each cell resampled from the "
+         "original image of the view SAC selected for its surface (the map's colours), or of the most nadir view "
+         "that sees it where that one is occluded; light grey: no view sees the cell.</p></div>";
+  }
   s << "</div>\n";
   return s.str();
 }

@@ -97,6 +97,53 @@ MapFigure WriteDsmFigure(const JobConfig& config, const ReportOptions& o, const 
   return m;
 }
 
+// The true orthophoto's thumbnail (ortho.png) from DIR/ortho.tif or DIR/ortho.vrt, read like the DSM's (GDAL's
+// overviews, averaged), its transparent cells light grey; absent when the run wrote no ortho.
+MapFigure WriteOrthoFigure(const JobConfig& config, const ReportOptions& o, const std::string& report_dir,
+                           ReportData* data) {
+  MapFigure m;
+  std::error_code ec;
+  std::string path;
+  for (const std::string& p : {OrthoPath(config), OrthoVrtPath(config)}) {
+    if (fs::is_regular_file(p, ec)) path = p;
+  }
+  if (path.empty()) return m;
+  try {
+    const RasterFile ortho(path);
+    if (ortho.bands() != 4) throw Error(path + ": not an RGBA raster");
+    int cols = 0, rows = 0;
+    std::vector<std::vector<float>> bands;
+    for (int b = 1; b <= 4; ++b) bands.push_back(ortho.ReadOverview(o.map_target_px, &cols, &rows, b));
+    RgbImage image(cols, rows, 3, 0);
+    constexpr float kBackground = 235.0f;
+    for (int r = 0; r < rows; ++r) {
+      for (int c = 0; c < cols; ++c) {
+        const size_t i = static_cast<size_t>(r) * cols + c;
+        const float a = std::isfinite(bands[3][i]) ? bands[3][i] / 255.0f : 0.0f;
+        for (int k = 0; k < 3; ++k) {
+          const float v = std::isfinite(bands[k][i]) ? bands[k][i] : 0.0f;
+          image.at(r, c, k) = static_cast<uint8_t>(std::lround(std::clamp(a * v + (1 - a) * kBackground, 0.0f, 255.0f)));
+        }
+      }
+    }
+    const double cell = ortho.window().cell_m * static_cast<double>(ortho.window().cols) / cols;
+    m.present = true;
+    m.file = "ortho.png";
+    WritePng((fs::path(report_dir) / m.file).string(), image);
+    m.width_px = image.width;
+    m.height_px = image.height;
+    m.x_min = ortho.window().west();
+    m.y_max = ortho.window().north();
+    m.metres_per_px = cell;
+    m.cell_m = ortho.window().cell_m;
+    m.cells_total = ortho.window().size();
+  } catch (const std::exception& e) {
+    data->warnings.push_back("no orthophoto picture: " + std::string(e.what()));
+    m = MapFigure{};
+  }
+  return m;
+}
+
 // The files holding the fused points of the strip: for a tiled run whose tiles are all done and placed, the tile
 // files whose core meets the strip (far less than fused.las); else fused.las.
 std::vector<std::string> AfterFiles(const ReportData& d, const Box2d& strip_box, std::string* source) {
@@ -227,6 +274,7 @@ ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {
     figures.profile.reason = data.cloud.exists ? data.cloud.name + " has no points" : "no " + data.cloud.name;
   }
   figures.dsm = WriteDsmFigure(config, o, report_dir, &data);
+  figures.ortho = WriteOrthoFigure(config, o, report_dir, &data);
   figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   figures.peak_rss_mib = PeakRssMiB();
   WriteFileAtomically((fs::path(report_dir) / kFiguresJson).string(), ReportFiguresToJson(figures));

@@ -5,7 +5,12 @@
 // (b) a tiled run (20 m tiles, output.raster_layout: tiles, so DIR/dsm.vrt over COG blocks): its DSM equals
 //     `sacfuse dsm` of its own fused.laz on the same extent cell for cell (the tiles' windows, their edge points
 //     and the hole filling across them leave no seam); each tile's done marker covers its DSM files;
-// (c) `sacfuse dsm` on a LAS takes the file's CRS, refuses bad arguments, and `sacfuse eval --dsm` scores a DSM.
+// (c) `sacfuse dsm` on a LAS takes the file's CRS, refuses bad arguments, and `sacfuse eval --dsm` scores a DSM;
+// (d) the true orthophoto (output.ortho: auto, on with the DSM): DIR/ortho.tif on the DSM's cells, RGBA, read back
+//     by GDAL's own gdalinfo (a reader independent of our code) as a COG with red, green, blue and alpha bands and
+//     the CRS; scored by `sacfuse eval --ortho` against the simulator's reference ortho (simulate
+//     --truth-ortho-cell) it beats the ortho of the points' colours; the tiled run's ortho (VRT layout) agrees
+//     with the untiled run's wherever their clouds give the cell the same height and view.
 // The Python checks skip with a message when /usr/bin/python3 has no GDAL bindings (Debian's python3-gdal).
 #include <cmath>
 #include <cstdio>
@@ -37,7 +42,7 @@ bool PythonHasGdal() { return RunCommand(std::string(kPython) + " -c 'from osgeo
 class DsmEndToEndTest : public testing::TinyBlockSuite {
  protected:
   static void SetUpTestSuite() {
-    SimulateBlock();
+    SimulateBlock("--truth-ortho-cell 0.25");
     const double gsd = BlockGsd();
     for (const auto& [name, tiling, layout] : {std::tuple<std::string, double, std::string>{"untiled", 0.0, "auto"},
                                               {"tiled", 20.0, "tiles"}}) {
@@ -173,6 +178,127 @@ TEST_F(DsmEndToEndTest, TiledDsmEqualsTheDsmOfItsOwnCloudAndTheVrtLayoutHoldsThe
   }
   EXPECT_GT(with_dsm, 4u);
   EXPECT_GT(with_edge, 0u);  // the tiny block's tiles do fuse points beyond their cores
+}
+
+// gdalinfo -json of a raster, or null when gdalinfo (Debian's gdal-bin) is absent.
+nlohmann::json GdalInfo(const fs::path& path) {
+  std::string out;
+  if (RunCommand("gdalinfo -json " + ShellQuote(path) + " 2>/dev/null", &out) != 0) return nullptr;
+  return nlohmann::json::parse(out, nullptr, false);
+}
+
+TEST_F(DsmEndToEndTest, UntiledRunWritesATrueOrthoOnTheDsmCells) {
+  const fs::path ortho = Out("untiled") / "ortho.tif";
+  ASSERT_TRUE(fs::exists(ortho));
+  const RasterFile o(ortho.string());
+  const RasterFile dsm((Out("untiled") / "dsm.tif").string());
+  EXPECT_EQ(o.window(), dsm.window());
+  EXPECT_EQ(o.bands(), 4);
+  EXPECT_NE(o.crs_wkt().find("25832"), std::string::npos);
+  const nlohmann::json report = ReadJsonFile(Out("untiled") / "run_report.json");
+  ASSERT_TRUE(report.contains("ortho")) << report.dump(2);
+  const nlohmann::json& r = report.at("ortho");
+  // Coloured: nearly every cell with a height; mostly from the view SAC selected.
+  const double with_height = report.at("dsm").at("cells_with_value").get<double>();
+  EXPECT_GT(r.at("cells_coloured").get<double>(), 0.97 * with_height) << r.dump();
+  EXPECT_GT(r.at("cells_selected_view").get<double>(), 0.8 * r.at("cells_coloured").get<double>()) << r.dump();
+  EXPECT_GT(r.at("cells_other_view").get<uint64_t>(), 0u) << r.dump();  // occluded selections and filled holes
+  // Alpha marks the coloured cells, and they are those the report counts.
+  const std::vector<float> alpha = o.ReadFloat(o.window(), 4);
+  uint64_t opaque = 0;
+  for (const float a : alpha) opaque += a == 255.0f ? 1 : 0;
+  EXPECT_EQ(opaque, r.at("cells_coloured").get<uint64_t>());
+  EXPECT_TRUE(fs::exists(Out("untiled") / "report" / "ortho.png"));
+  EXPECT_NE(testing::ReadFileBytes(Out("untiled") / "report" / "index.html").find("ortho.png"), std::string::npos);
+
+  const nlohmann::json info = GdalInfo(ortho);
+  if (info.is_null() || info.is_discarded()) GTEST_SKIP() << "gdalinfo (Debian: gdal-bin) absent: GDAL's reading not run";
+  EXPECT_EQ(info.at("size").at(0).get<int64_t>(), o.window().cols);
+  EXPECT_EQ(info.at("size").at(1).get<int64_t>(), o.window().rows);
+  const nlohmann::json& bands = info.at("bands");
+  ASSERT_EQ(bands.size(), 4u);
+  const char* interp[] = {"Red", "Green", "Blue", "Alpha"};
+  for (size_t b = 0; b < 4; ++b) {
+    EXPECT_EQ(bands[b].at("type").get<std::string>(), "Byte");
+    EXPECT_EQ(bands[b].at("colorInterpretation").get<std::string>(), interp[b]);
+    EXPECT_GT(bands[b].value("overviews", nlohmann::json::array()).size(), 0u);
+  }
+  const nlohmann::json& structure = info.at("metadata").at("IMAGE_STRUCTURE");
+  EXPECT_EQ(structure.value("LAYOUT", ""), "COG") << structure.dump();
+  EXPECT_EQ(structure.value("COMPRESSION", ""), "DEFLATE") << structure.dump();
+  EXPECT_NE(info.at("coordinateSystem").at("wkt").get<std::string>().find("25832"), std::string::npos);
+  EXPECT_DOUBLE_EQ(info.at("geoTransform").at(0).get<double>(), o.window().west());
+  EXPECT_DOUBLE_EQ(info.at("geoTransform").at(3).get<double>(), o.window().north());
+}
+
+// The scores `sacfuse eval --ortho` prints for one ortho: PSNR, SSIM, edge displacement median (cells).
+struct PrintedOrthoScores {
+  double coverage = 0, psnr = 0, ssim = 0, edge_median = 0, edge_p90 = 0;
+};
+PrintedOrthoScores ParseOrthoLine(const std::string& out, const std::string& name) {
+  PrintedOrthoScores s;
+  const size_t at = out.find("  " + name + " ");
+  if (at == std::string::npos) return s;
+  unsigned long long cells = 0;
+  std::sscanf(out.c_str() + at + 2 + name.size(), " %llu %lf%% %lf %lf %lf cells %*f m %lf", &cells, &s.coverage, &s.psnr,
+              &s.ssim, &s.edge_median, &s.edge_p90);
+  return s;
+}
+
+TEST_F(DsmEndToEndTest, TrueOrthoBeatsThePointColourOrthoAgainstTheSimulatorsReference) {
+  ASSERT_TRUE(fs::exists(Block() / "truth_ortho.tif"));
+  std::string out;
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(Out("untiled") / "fused.laz") + " --reference " +
+                           ShellQuote(Block() / "reference.las") + " --gsd " + std::to_string(BlockGsd()) +
+                           " --ortho " + ShellQuote(Out("untiled") / "ortho.tif") + " --ortho-reference " +
+                           ShellQuote(Block() / "truth_ortho.tif"),
+                       &out),
+            0)
+      << out;
+  const PrintedOrthoScores ortho = ParseOrthoLine(out, "true ortho"), points = ParseOrthoLine(out, "point colours");
+  EXPECT_GT(ortho.coverage, 90.0) << out;
+  EXPECT_GT(ortho.psnr, points.psnr) << out;
+  EXPECT_GT(ortho.ssim, points.ssim) << out;
+  EXPECT_LE(ortho.edge_p90, points.edge_p90) << out;
+  EXPECT_EQ(RunCommand(SacfuseBinary() + " eval " + ShellQuote(Out("untiled") / "fused.laz") + " --reference " +
+                           ShellQuote(Block() / "reference.las") + " --ortho " +
+                           ShellQuote(Out("untiled") / "ortho.tif"),
+                       &out),
+            2)
+      << out;
+  EXPECT_NE(out.find("--ortho-reference"), std::string::npos) << out;
+}
+
+TEST_F(DsmEndToEndTest, TiledOrthoIsOnTheTiledDsmAndAgreesWithTheUntiledOne) {
+  ASSERT_TRUE(fs::exists(Out("tiled") / "ortho.vrt"));
+  EXPECT_FALSE(fs::exists(Out("tiled") / "ortho.tif"));
+  const RasterFile tiled((Out("tiled") / "ortho.vrt").string());
+  const RasterFile tiled_dsm((Out("tiled") / "dsm.vrt").string());
+  EXPECT_EQ(tiled.window(), tiled_dsm.window());
+  const RasterFile untiled((Out("untiled") / "ortho.tif").string());
+  const RasterFile untiled_dsm((Out("untiled") / "dsm.tif").string());
+  const CellWindow w = tiled.window().Intersection(untiled.window());
+  // The two runs' clouds differ a little (SAC decides per tile with the tile's views), so their DSMs and selected
+  // views do; where the two DSMs agree within 1 cm, the orthos show the same colours up to the choice of view.
+  const std::vector<float> za = tiled_dsm.ReadFloat(w), zb = untiled_dsm.ReadFloat(w);
+  std::vector<std::vector<float>> a, b;
+  for (int band = 1; band <= 4; ++band) a.push_back(tiled.ReadFloat(w, band)), b.push_back(untiled.ReadFloat(w, band));
+  uint64_t same_height = 0, identical = 0, close = 0;
+  for (size_t i = 0; i < w.size(); ++i) {
+    if (std::isnan(za[i]) || std::isnan(zb[i]) || std::abs(za[i] - zb[i]) > 0.01f) continue;
+    ++same_height;
+    bool same = true;
+    double diff = 0;
+    for (int band = 0; band < 4; ++band) {
+      same = same && a[band][i] == b[band][i];
+      if (band < 3) diff += std::abs(a[band][i] - b[band][i]) / 3.0;
+    }
+    identical += same ? 1 : 0;
+    close += diff <= 16 ? 1 : 0;
+  }
+  EXPECT_GT(same_height, w.size() / 2);
+  EXPECT_GT(identical, 0.8 * same_height) << identical << " of " << same_height;
+  EXPECT_GT(close, 0.95 * same_height) << close << " of " << same_height;
 }
 
 TEST_F(DsmEndToEndTest, DsmCommandTakesTheLasCrsAndEvalScoresADsm) {

@@ -1,7 +1,7 @@
 // End-to-end: per-tile outputs and resume of a tiled run (simulate --preset tiny, 20 m tiles, 5 m halo).
 // (a) an uninterrupted run; (b) three kill -9 at random moments, then a run to completion, gives the same
-// fused.laz (bytes equal except the header's creation date) and the same dsm.tif (every byte; the runs have a CRS,
-// so they write the DSM) and leaves no "*.tmp-*" file; (c) --tiles reruns
+// fused.laz (bytes equal except the header's creation date) and the same dsm.tif and ortho.tif (every byte; the
+// runs have a CRS, so they write the DSM and the true orthophoto) and leaves no "*.tmp-*" file; (c) --tiles reruns
 // only the named tile; (d) status lists every tile done, and a tile whose LAS was deleted as pending; (e) a
 // truncated tile LAS is recomputed by the next run; (f) a failing tile is recorded and the others go on.
 #include <chrono>
@@ -66,6 +66,7 @@ class ResumeEndToEndTest : public testing::TinyBlockSuite {
     run_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     reference_ = WithoutLasCreationDate(ReadFileBytes(Out("a") / "fused.laz"));
     reference_dsm_ = ReadFileBytes(Out("a") / "dsm.tif");
+    reference_ortho_ = ReadFileBytes(Out("a") / "ortho.tif");
   }
   static fs::path Tiles(const std::string& name) { return Out(name) / "tiles"; }
   // A run that waits on a tile claim forever fails here after 5 minutes with its output (exit 124), not at
@@ -83,10 +84,14 @@ class ResumeEndToEndTest : public testing::TinyBlockSuite {
     const std::string dsm = ReadFileBytes(Out(name) / "dsm.tif");
     EXPECT_GT(reference_dsm_.size(), 1000u);
     EXPECT_TRUE(dsm == reference_dsm_) << name << "/dsm.tif differs from the uninterrupted run's";
+    const std::string ortho = ReadFileBytes(Out(name) / "ortho.tif");
+    EXPECT_GT(reference_ortho_.size(), 1000u);
+    EXPECT_TRUE(ortho == reference_ortho_) << name << "/ortho.tif differs from the uninterrupted run's";
   }
 
   static inline std::string reference_;
   static inline std::string reference_dsm_;
+  static inline std::string reference_ortho_;
   static inline double run_seconds_ = 0.0;
 };
 

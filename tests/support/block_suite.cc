@@ -53,15 +53,19 @@ fs::path CachedTinyBlock(std::string* log) {
 
 }  // namespace
 
-void TinyBlockSuite::SimulateBlock() {
+void TinyBlockSuite::SimulateBlock(const std::string& extra_args) {
   dir_ = new TempDir();
   std::string out;
-  const fs::path cached = CachedTinyBlock(&out);
+  // Only the plain block is shared; a suite that asks for more (`extra_args`) simulates its own.
+  const fs::path cached = extra_args.empty() ? CachedTinyBlock(&out) : fs::path();
   std::error_code ec;
   if (!cached.empty()) fs::copy(cached, Block(), fs::copy_options::recursive, ec);
   if (cached.empty() || ec) {
     fs::remove_all(Block(), ec);
-    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + ShellQuote(Block()), &out), 0)
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " simulate --preset tiny --seed 3 --out " + ShellQuote(Block()) +
+                             (extra_args.empty() ? "" : " " + extra_args),
+                         &out),
+              0)
         << out;
   }
 }

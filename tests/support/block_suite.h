@@ -19,7 +19,8 @@ class TinyBlockSuite : public ::testing::Test {
  protected:
   static void SetUpTestSuite() { SimulateBlock(); }
   static void TearDownTestSuite();
-  static void SimulateBlock();  // fails the suite (fatal) when simulate fails
+  // Fails the suite (fatal) when simulate fails; `extra_args` are added to the simulate command line.
+  static void SimulateBlock(const std::string& extra_args = "");
 
   static std::filesystem::path Dir() { return dir_->path(); }
   static std::filesystem::path Block() { return Dir() / "block"; }

@@ -26,6 +26,12 @@ void AddEvalCommand(CLI::App& app, int* exit_code) {
   cmd->add_option("--dsm", request->dsm,
                   "Also score this DSM (GeoTIFF or VRT) against the reference's top surface on its cells: "
                   "completeness, median, NMAD, RMSE, by class");
+  cmd->add_option("--ortho", request->ortho,
+                  "Also score this RGBA orthophoto (GeoTIFF or VRT) against --ortho-reference on their common cells, "
+                  "beside the ortho of RESULT's point colours: coverage, PSNR, SSIM, edge displacement");
+  cmd->add_option("--ortho-reference", request->ortho_reference,
+                  "Reference orthophoto on the same cell lattice (e.g. truth_ortho.tif of `sacfuse simulate "
+                  "--truth-ortho-cell`)");
   cmd->callback([request, exit_code] {
     SetupLogging("info");
     *exit_code = RunGuarded([&] {

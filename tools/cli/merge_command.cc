@@ -34,6 +34,9 @@ int MergeCommand(const ConfigArgs& args, bool wait) {
     std::cout << "DSM: " << out.dsm.path << " (" << out.dsm.cols << " x " << out.dsm.rows << " cells of "
               << out.dsm.cell_m << " m)\n";
   }
+  if (out.ortho.written) {
+    std::cout << "true orthophoto: " << out.ortho.path << " (" << out.ortho.cells_coloured << " cells coloured)\n";
+  }
   return kExitOk;
 }
 

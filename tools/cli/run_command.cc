@@ -113,6 +113,10 @@ int RunCommand(const RunArgs& args) {
         std::cout << "DSM: " << summary.dsm.path << " (" << summary.dsm.cols << " x " << summary.dsm.rows
                   << " cells of " << summary.dsm.cell_m << " m)\n";
       }
+      if (summary.ortho.written) {
+        std::cout << "true orthophoto: " << summary.ortho.path << " (" << summary.ortho.cells_coloured
+                  << " cells coloured)\n";
+      }
       PrintSourceViewSummary(summary, std::cout);
       std::cout << summary.eval_text;  // the scores (evaluation.reference), computed by the job
     } catch (const ConfigError&) {

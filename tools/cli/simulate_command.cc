@@ -27,6 +27,7 @@ struct SimulateArgs {
   double error_scale = 1.0;
   bool no_obliques = false;
   bool write_truth = false;
+  double truth_ortho_cell_m = 0.0;
   std::optional<bool> consistency_graphs;  // unset = the preset's default
   double area_m = 0.0;
   bool no_normal_maps = false;
@@ -66,6 +67,7 @@ int Simulate(const SimulateArgs& args) {
     if (args.no_pose_errors) options.errors.pose_position_sigma_m = options.errors.pose_rotation_sigma_deg = 0.0;
     options.obliques = !args.no_obliques;
     options.write_truth = args.write_truth;
+    options.truth_ortho_cell_m = args.truth_ortho_cell_m;
     if (args.consistency_graphs) options.write_consistency_graphs = *args.consistency_graphs;
     options.write_normal_maps = !args.no_normal_maps;
     if (args.pixel_scale <= 0.0 || !std::isfinite(args.pixel_scale)) {
@@ -114,6 +116,10 @@ void AddSimulateCommand(CLI::App& app, int* exit_code) {
       ->capture_default_str();
   cmd->add_flag("--no-obliques", args->no_obliques, "Nadir camera only");
   cmd->add_flag("--write-truth", args->write_truth, "Also write truth/: error-free depth maps with true poses");
+  cmd->add_option("--truth-ortho-cell", args->truth_ortho_cell_m,
+                  "Also write truth_ortho.tif: the true scene seen from straight above with the images' shading, on "
+                  "cells of this size in metres (the reference of `sacfuse eval --ortho`; 0 = none)")
+      ->check(CLI::NonNegativeNumber);
   auto* graphs_on = cmd->add_flag_callback(
       "--consistency-graphs", [args] { args->consistency_graphs = true; },
       "Write stereo/consistency_graphs/ (COLMAP dense-matching consistency; default: on for tiny and small)");

@@ -72,6 +72,7 @@ struct SimOptions {
 
   // --- Added by the sim module (defaults keep the behaviour described in simulate.h) ---
   bool write_truth = false;              // also write truth/: TRUE poses and error-free depth maps (the ceiling)
+  double truth_ortho_cell_m = 0.0;       // > 0: also write truth_ortho.tif, the reference ortho (truth_ortho.h)
   double eval_cell_m = 0.0;              // eval_mask.png cell, metres (0 = 1 m, halved while the shorter area side
                                          // has < 100 cells, down to 0.25 m)
   double sparse_area_per_point_m2 = 20.0;  // one sparse-point candidate per this much area, m^2

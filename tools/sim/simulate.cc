@@ -13,6 +13,7 @@
 #include "io/colmap_array.h"
 #include "io/colmap_model.h"
 #include "io/colmap_workspace.h"
+#include "io/crs_wkt.h"
 #include "io/geo_mask_io.h"
 #include "tools/sim/city_layout.h"
 #include "tools/sim/city_scene.h"
@@ -28,6 +29,7 @@
 #include "tools/sim/sim_random.h"
 #include "tools/sim/sim_workspace.h"
 #include "tools/sim/sparse_points.h"
+#include "tools/sim/truth_ortho.h"
 #include "tools/sim/visibility.h"
 #include "io/json_text.h"
 
@@ -287,6 +289,15 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
   }
   report("sparse", 1, 1);
   WriteGeoMask(summary.eval_mask_png, coverage.Mask(2), scene.crs);
+  if (o.truth_ortho_cell_m > 0) {
+    std::string wkt;
+    try {
+      wkt = ProjectCrsWkt(scene.crs, CrsWktDialect::kGdal);
+    } catch (const std::exception&) {
+      wkt = scene.crs;  // a LiDAR scene's CRS is WKT already
+    }
+    WriteTruthOrtho(surface, area, lighting, o.truth_ortho_cell_m, wkt, Join(out_dir, "truth_ortho.tif"));
+  }
 
   Json sgbm_json = nullptr;
   if (sgbm) {

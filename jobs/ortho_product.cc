@@ -1,0 +1,193 @@
+#include "jobs/ortho_product.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+
+#include <spdlog/spdlog.h>
+
+#include "config/output_layout.h"
+#include "core/error.h"
+#include "core/ortho_rule.h"
+#include "io/gdal_raster.h"
+#include "io/point_cloud_file.h"
+#include "io/raster_assembly.h"
+#include "io/resource_usage.h"
+#include "tiles/tile_manifest.h"
+#include "tiles/tile_marker.h"
+
+namespace sacfuse {
+namespace {
+
+namespace fs = std::filesystem;
+
+RasterFormat OrthoRasterFormat(const std::string& crs_wkt) {
+  RasterFormat f;
+  f.bands = 4;
+  f.type = RasterSampleType::kByte;
+  f.crs_wkt = crs_wkt;
+  f.rgba = true;
+  f.overview_resampling = "AVERAGE";
+  return f;
+}
+
+RasterOutput OrthoRasterOutput(const JobConfig& config, bool blocks) {
+  RasterOutput out;
+  out.blocks = blocks;
+  out.single_path = OrthoPath(config);
+  out.blocks_dir = OrthoBlocksDir(config);
+  out.vrt_path = OrthoVrtPath(config);
+  return out;
+}
+
+void RemoveQuietly(const std::string& path) {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
+Box2d BoxOf(const CellWindow& w) { return Box2d(w.west(), w.south(), w.east(), w.north()); }
+
+// The SAC-selected view of every cell of `block` (north-up, -1 = none): the source view of the cell's point whose
+// float height is nearest the cell's DSM height (the median point, whose height the DSM holds exactly), ties to
+// the lower view index. Reads the points of the clouds whose bounds meet the block.
+std::vector<int32_t> SelectedViews(const std::vector<OrthoCloud>& clouds, const CellWindow& block, const DsmPatch& dsm,
+                                   size_t view_count) {
+  std::vector<int32_t> view(block.size(), -1);
+  std::vector<float> best(block.size(), INFINITY);
+  const Box2d box = BoxOf(block);
+  const double cell = block.cell_m;
+  CloudChunk chunk;
+  for (const OrthoCloud& c : clouds) {
+    if (c.bounds.IsEmpty() || !c.bounds.Intersects(box)) continue;
+    PointCloudFile cloud(c.path);
+    while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
+      for (size_t k = 0; k < chunk.xyz.size(); ++k) {
+        const Eigen::Vector3d& p = chunk.xyz[k];
+        const uint16_t source = chunk.source_id[k];
+        if (source == 0 || source > view_count || !p.allFinite()) continue;
+        const int64_t col = CellIndexOf(p.x(), cell), row = CellIndexOf(p.y(), cell);
+        if (!block.Contains(col, row)) continue;
+        const float h = dsm.z[dsm.window.Index(col, row)];
+        if (!std::isfinite(h)) continue;
+        const size_t i = block.Index(col, row);
+        const float dz = std::abs(static_cast<float>(p.z()) - h);
+        const int32_t v = static_cast<int32_t>(source) - 1;
+        if (dz < best[i] || (dz == best[i] && v < view[i])) best[i] = dz, view[i] = v;
+      }
+    }
+  }
+  return view;
+}
+
+}  // namespace
+
+std::vector<OrthoCloud> TiledRunClouds(const JobConfig& config, const TilePlan& plan) {
+  const std::string tiles_dir = TilesDir(config);
+  std::vector<OrthoCloud> clouds;
+  for (const std::string& id : TileIdsWithViews(plan)) {
+    const auto marker = ReadTileDoneMarker(tiles_dir, id);
+    if (!marker) throw Error(TileDonePath(tiles_dir, id) + ": done marker vanished before the ortho was made");
+    if (marker->points == 0) continue;
+    clouds.push_back({TileCloudPath(tiles_dir, *marker),
+                      Box2d(marker->min[0], marker->min[1], marker->max[0], marker->max[1])});
+  }
+  return clouds;
+}
+
+OrthoCloud FusedCloud(const std::string& path) {
+  PointCloudFile cloud(path);
+  return {path, cloud.bounds_xy()};
+}
+
+void RemoveOrthoFiles(const JobConfig& config) {
+  for (const std::string& path : {OrthoPath(config), OrthoVrtPath(config), OrthoBlocksDir(config)}) {
+    std::error_code ec;
+    if (fs::exists(path, ec)) {
+      spdlog::info("ortho: removing {} of an earlier run", path);
+      RemoveQuietly(path);
+    }
+  }
+}
+
+OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, const DsmOutcome& dsm,
+                            const std::vector<OrthoCloud>& clouds) {
+  if (!OrthoWanted(config) || !dsm.written) {
+    RemoveOrthoFiles(config);
+    return {};
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = ProcessCpuSeconds();
+  const RasterFile dsm_file(dsm.path);
+  const CellWindow extent = dsm_file.window();
+  const double cell = extent.cell_m;
+  const OrthoRule rule = OrthoRuleForCell(cell);
+  const int64_t halo = OrthoHaloCells(rule, cell);
+  std::vector<OrthoView> views;
+  for (const View& v : input.views()) views.push_back(OrthoViewOf(v.index, v.camera, v.cam_from_world));
+
+  const bool blocks = RasterLayoutIsBlocks(config.output.raster_layout, extent);
+  if (blocks) {
+    RemoveQuietly(OrthoPath(config));
+  } else {
+    RemoveQuietly(OrthoVrtPath(config));
+    RemoveQuietly(OrthoBlocksDir(config));
+  }
+  OrthoOutcome out;
+  const BlockMaker make = [&](const CellWindow& block, uint64_t* cells_with_value) {
+    const CellWindow outer = block.Grown(halo);
+    const DsmPatch patch = MakeDsmPatch(outer, dsm_file.ReadFloat(outer));
+    const std::vector<int32_t> selected = SelectedViews(clouds, block, patch, views.size());
+    const std::vector<int32_t> chosen = OrthoCellViews(patch, block, selected, views, rule);
+    const size_t n = block.size();
+    std::vector<uint8_t> rgba(4 * n, 0);
+    std::map<int32_t, std::vector<size_t>> cells_of_view;  // ascending views: one image decoded at a time
+    for (size_t i = 0; i < n; ++i) {
+      if (chosen[i] >= 0) {
+        cells_of_view[chosen[i]].push_back(i);
+        ++(chosen[i] == selected[i] ? out.cells_selected_view : out.cells_other_view);
+      } else {
+        const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
+        const int64_t row = block.row0 + block.rows - 1 - static_cast<int64_t>(i / block.cols);
+        if (std::isfinite(patch.z[outer.Index(col, row)])) ++out.cells_unseen;
+      }
+    }
+    for (const auto& [v, cells] : cells_of_view) {
+      const View& view = input.views()[v];
+      const RgbImage image = input.ReadImage(view);
+      ++out.image_reads;
+      if (image.empty()) continue;  // an input without images: those cells stay transparent
+      const PinholeCamera camera = view.camera.Scaled(image.width, image.height);
+      for (const size_t i : cells) {
+        const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
+        const int64_t row = block.row0 + block.rows - 1 - static_cast<int64_t>(i / block.cols);
+        const Eigen::Vector3d x = CellPoint(col, row, cell, patch.z[outer.Index(col, row)]);
+        const Eigen::Vector2d uv = camera.Project(view.cam_from_world * x);
+        const std::array<uint8_t, 3> rgb = SampleBilinear(image, uv.x(), uv.y());
+        for (int c = 0; c < 3; ++c) rgba[c * n + i] = rgb[c];
+        rgba[3 * n + i] = 255;
+        ++*cells_with_value;
+      }
+    }
+    return rgba;
+  };
+  const AssemblyStats stats =
+      AssembleRasterBlocks(extent, make, OrthoRasterFormat(dsm_file.crs_wkt()), OrthoRasterOutput(config, blocks));
+  out.written = true;
+  out.path = stats.files.front();
+  out.cols = extent.cols;
+  out.rows = extent.rows;
+  out.cells_coloured = stats.cells_with_value;
+  out.files = stats.files.size();
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.cpu_seconds = ProcessCpuSeconds() - cpu_start;
+  out.peak_rss_mib = PeakRssMiB();
+  spdlog::info("ortho: {} ({} x {} cells, {:.1f} % coloured: {} from the SAC-selected view, {} from another view; {} "
+               "cells with a height no view sees; {} image reads) in {:.1f} s ({:.1f} s CPU)",
+               out.path, out.cols, out.rows, out.cells_coloured * 100.0 / std::max<double>(1, extent.size()),
+               out.cells_selected_view, out.cells_other_view, out.cells_unseen, out.image_reads, out.seconds, out.cpu_seconds);
+  return out;
+}
+
+}  // namespace sacfuse
