@@ -131,4 +131,23 @@ std::array<uint8_t, 3> SampleBilinear(const RgbImage& image, double u, double v)
   return out;
 }
 
+std::array<uint8_t, 3> CellColour(const RgbImage& image, const PinholeCamera& camera, const Rigid3d& cam_from_world,
+                                  const Eigen::Vector3d& x, double cell_m) {
+  double sum[3] = {0, 0, 0};
+  int samples = 0;
+  for (const double dy : {-0.25, 0.25}) {
+    for (const double dx : {-0.25, 0.25}) {
+      const Eigen::Vector3d in_cam = cam_from_world * (x + Eigen::Vector3d(dx * cell_m, dy * cell_m, 0.0));
+      if (!(in_cam.z() > 0)) continue;
+      const Eigen::Vector2d uv = camera.Project(in_cam);
+      const std::array<uint8_t, 3> rgb = SampleBilinear(image, uv.x(), uv.y());
+      for (int c = 0; c < 3; ++c) sum[c] += rgb[c];
+      ++samples;
+    }
+  }
+  std::array<uint8_t, 3> out{};
+  for (int c = 0; c < 3; ++c) out[c] = samples > 0 ? static_cast<uint8_t>(std::lround(sum[c] / samples)) : 0;
+  return out;
+}
+
 }  // namespace sacfuse

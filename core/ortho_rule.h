@@ -70,6 +70,12 @@ std::vector<int32_t> OrthoCellViews(const DsmPatch& dsm, const CellWindow& inner
 // border).
 std::array<uint8_t, 3> SampleBilinear(const RgbImage& image, double u, double v);
 
+// The colour of a cell of edge cell_m whose surface point is X: the mean of the bilinear samples of `image` (seen
+// through `camera`, `cam_from_world`) at the projections of the 2 x 2 points (x +- cell_m / 4, y +- cell_m / 4, z),
+// so the cell's whole area is represented, not only its centre.
+std::array<uint8_t, 3> CellColour(const RgbImage& image, const PinholeCamera& camera, const Rigid3d& cam_from_world,
+                                  const Eigen::Vector3d& x, double cell_m);
+
 // The 3D point of cell (col, row) of height z: its centre at that height.
 inline Eigen::Vector3d CellPoint(int64_t col, int64_t row, double cell_m, double z) {
   return {CellEdge(col, cell_m) + 0.5 * cell_m, CellEdge(row, cell_m) + 0.5 * cell_m, z};

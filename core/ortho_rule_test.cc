@@ -113,5 +113,20 @@ TEST(OrthoRuleTest, BilinearSamplingInterpolatesBetweenPixelCentres) {
   EXPECT_EQ(SampleBilinear(image, 0.0, 2.0)[0], 200);   // clamped at the border
 }
 
+TEST(OrthoRuleTest, ACellsColourAveragesSamplesOverItsArea) {
+  // A nadir view 10 m above the plane z = 0 at f = 100 px: 10 cm per pixel; image centre (50, 50) below (0, 0).
+  const OrthoView view = DownView(0, {0, 0, 10});
+  const PinholeCamera camera = PinholeCamera::Centered(100, 100, 100.0);
+  RgbImage image(100, 100, 3, 0);
+  for (int r = 0; r < 100; ++r) {
+    for (int c = 50; c < 100; ++c) image.at(r, c, 0) = 200;  // x >= 0 is red
+  }
+  // A 1 m cell centred on x = 0 straddles the edge: two samples each side, the mean half way.
+  EXPECT_EQ(CellColour(image, camera, view.cam_from_world, {0.0, 0.0, 0.0}, 1.0)[0], 100);
+  // A cell centred on x = 2 m lies wholly in the red half.
+  EXPECT_EQ(CellColour(image, camera, view.cam_from_world, {2.0, 0.0, 0.0}, 1.0)[0], 200);
+  EXPECT_EQ(CellColour(image, camera, view.cam_from_world, {-2.0, 0.0, 0.0}, 1.0)[0], 0);
+}
+
 }  // namespace
 }  // namespace sacfuse

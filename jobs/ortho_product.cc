@@ -162,9 +162,9 @@ OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, co
       for (const size_t i : cells) {
         const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
         const int64_t row = block.row0 + block.rows - 1 - static_cast<int64_t>(i / block.cols);
-        const Eigen::Vector3d x = CellPoint(col, row, cell, patch.z[outer.Index(col, row)]);
-        const Eigen::Vector2d uv = camera.Project(view.cam_from_world * x);
-        const std::array<uint8_t, 3> rgb = SampleBilinear(image, uv.x(), uv.y());
+        const std::array<uint8_t, 3> rgb =
+            CellColour(image, camera, view.cam_from_world, CellPoint(col, row, cell, patch.z[outer.Index(col, row)]),
+                       cell);
         for (int c = 0; c < 3; ++c) rgba[c * n + i] = rgb[c];
         rgba[3 * n + i] = 255;
         ++*cells_with_value;
