@@ -97,6 +97,28 @@ TEST(JobConfigCrsTest, PrintDefaultsShowsTheKeyAndItsDoc) {
   EXPECT_NE(DumpJobConfig(c, false).find("crs: \"EPSG:25832\""), std::string::npos);
 }
 
+TEST(JobConfigCrsTest, TheTrueOrthoFollowsTheDsmAndOnWithoutOneIsRefused) {
+  JobConfig c;
+  c.input.path = "ws";
+  EXPECT_FALSE(OrthoWanted(c));  // no CRS: no DSM, no ortho
+  c.crs = "EPSG:25832";
+  EXPECT_TRUE(OrthoWanted(c));   // auto: with the DSM
+  c.output.ortho = "off";
+  EXPECT_FALSE(OrthoWanted(c));
+  c.output.ortho = "on";
+  c.output.dsm = "off";
+  try {
+    ValidateJobConfig(c);
+    ADD_FAILURE() << "output.ortho on without a DSM was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("output.ortho"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("output.dsm"), std::string::npos) << e.what();
+  }
+  c.output.dsm = "on";
+  EXPECT_NO_THROW(ValidateJobConfig(c));
+  EXPECT_TRUE(OrthoWanted(c));
+}
+
 TEST(JobConfigCrsTest, ChangingTheCrsChangesTheResultSettings) {
   JobConfig a;
   a.input.path = "ws";
