@@ -133,10 +133,14 @@ std::array<uint8_t, 3> SampleBilinear(const RgbImage& image, double u, double v)
 
 std::array<uint8_t, 3> CellColour(const RgbImage& image, const PinholeCamera& camera, const Rigid3d& cam_from_world,
                                   const Eigen::Vector3d& x, double cell_m) {
+  const Eigen::Vector3d centre_in_cam = cam_from_world * x;
+  const double pixel_m = centre_in_cam.z() > 0 ? centre_in_cam.z() / camera.fx : cell_m;  // the image's GSD at X
+  const int n = std::clamp(static_cast<int>(std::ceil(cell_m / pixel_m - 1e-9)), kMinCellSamples, kMaxCellSamples);
   double sum[3] = {0, 0, 0};
   int samples = 0;
-  for (const double dy : {-0.25, 0.25}) {
-    for (const double dx : {-0.25, 0.25}) {
+  for (int sy = 0; sy < n; ++sy) {
+    for (int sx = 0; sx < n; ++sx) {
+      const double dx = (sx + 0.5) / n - 0.5, dy = (sy + 0.5) / n - 0.5;
       const Eigen::Vector3d in_cam = cam_from_world * (x + Eigen::Vector3d(dx * cell_m, dy * cell_m, 0.0));
       if (!(in_cam.z() > 0)) continue;
       const Eigen::Vector2d uv = camera.Project(in_cam);

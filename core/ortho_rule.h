@@ -71,8 +71,10 @@ std::vector<int32_t> OrthoCellViews(const DsmPatch& dsm, const CellWindow& inner
 std::array<uint8_t, 3> SampleBilinear(const RgbImage& image, double u, double v);
 
 // The colour of a cell of edge cell_m whose surface point is X: the mean of the bilinear samples of `image` (seen
-// through `camera`, `cam_from_world`) at the projections of the 2 x 2 points (x +- cell_m / 4, y +- cell_m / 4, z),
-// so the cell's whole area is represented, not only its centre.
+// through `camera`, `cam_from_world`) at the projections of n x n points evenly spread over the cell at X's height,
+// n = ceil(cell_m / the image's pixel size at X) within [kMinCellSamples, kMaxCellSamples]: the image averaged over
+// the cell's area (at least one sample per image pixel), as a downsampling filter must, not point-sampled.
+constexpr int kMinCellSamples = 2, kMaxCellSamples = 8;
 std::array<uint8_t, 3> CellColour(const RgbImage& image, const PinholeCamera& camera, const Rigid3d& cam_from_world,
                                   const Eigen::Vector3d& x, double cell_m);
 

@@ -121,7 +121,7 @@ TEST(OrthoRuleTest, ACellsColourAveragesSamplesOverItsArea) {
   for (int r = 0; r < 100; ++r) {
     for (int c = 50; c < 100; ++c) image.at(r, c, 0) = 200;  // x >= 0 is red
   }
-  // A 1 m cell centred on x = 0 straddles the edge: two samples each side, the mean half way.
+  // A 1 m cell centred on x = 0 straddles the edge: 10 cm pixels, so 8 x 8 samples, half of them each side.
   EXPECT_EQ(CellColour(image, camera, view.cam_from_world, {0.0, 0.0, 0.0}, 1.0)[0], 100);
   // A cell centred on x = 2 m lies wholly in the red half.
   EXPECT_EQ(CellColour(image, camera, view.cam_from_world, {2.0, 0.0, 0.0}, 1.0)[0], 200);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include <spdlog/spdlog.h>
@@ -63,85 +64,71 @@ MapFigure WriteMap(const TopGrid& grid, const std::vector<Rgb>& colours, uint64_
   return m;
 }
 
-// The DSM's hill-shade thumbnail (dsm.png) from DIR/dsm.tif or DIR/dsm.vrt, read at most map_target_px cells
-// on its longer side (GDAL's overviews); absent when the run wrote no DSM. A DSM that cannot be read adds a warning.
-MapFigure WriteDsmFigure(const JobConfig& config, const ReportOptions& o, const std::string& report_dir,
-                         ReportData* data) {
+// A raster product's thumbnail `file` in the report folder, from the first of `paths` that exists (the single COG
+// or the VRT), read at most map_target_px cells on its longer side (GDAL's overviews) and drawn by `render`
+// (the raster, the size read, the metres per sample read); absent when the run wrote neither. A raster that cannot
+// be read adds the warning "no <what> picture: ...".
+using ThumbnailRenderer = std::function<RgbImage(const RasterFile& raster, int max_side, double* metres_per_px)>;
+MapFigure WriteRasterFigure(const std::vector<std::string>& paths, const std::string& file, const std::string& what,
+                            const ReportOptions& o, const std::string& report_dir, const ThumbnailRenderer& render,
+                            ReportData* data) {
   MapFigure m;
   std::error_code ec;
   std::string path;
-  for (const std::string& p : {DsmPath(config), DsmVrtPath(config)}) {
-    if (fs::is_regular_file(p, ec)) path = p;
+  for (const std::string& p : paths) {
+    if (path.empty() && fs::is_regular_file(p, ec)) path = p;
   }
   if (path.empty()) return m;
   try {
-    const RasterFile dsm(path);
-    int cols = 0, rows = 0;
-    const std::vector<float> z = dsm.ReadOverview(o.map_target_px, &cols, &rows);
-    const double cell = dsm.window().cell_m * static_cast<double>(dsm.window().cols) / cols;
-    const RgbImage image = RenderDsmHillShade(z, cols, rows, cell, SourceMapStyle{});
+    const RasterFile raster(path);
+    double metres_per_px = 0.0;
+    const RgbImage image = render(raster, o.map_target_px, &metres_per_px);
     m.present = true;
-    m.file = "dsm.png";
+    m.file = file;
     WritePng((fs::path(report_dir) / m.file).string(), image);
     m.width_px = image.width;
     m.height_px = image.height;
-    m.x_min = dsm.window().west();
-    m.y_max = dsm.window().north();
-    m.metres_per_px = cell;
-    m.cell_m = dsm.window().cell_m;
-    m.cells_total = dsm.window().size();
+    m.x_min = raster.window().west();
+    m.y_max = raster.window().north();
+    m.metres_per_px = metres_per_px;
+    m.cell_m = raster.window().cell_m;
+    m.cells_total = raster.window().size();
   } catch (const std::exception& e) {
-    data->warnings.push_back("no DSM picture: " + std::string(e.what()));
+    data->warnings.push_back("no " + what + " picture: " + std::string(e.what()));
     m = MapFigure{};
   }
   return m;
 }
 
-// The true orthophoto's thumbnail (ortho.png) from DIR/ortho.tif or DIR/ortho.vrt, read like the DSM's (GDAL's
-// overviews, averaged), its transparent cells light grey; absent when the run wrote no ortho.
-MapFigure WriteOrthoFigure(const JobConfig& config, const ReportOptions& o, const std::string& report_dir,
-                           ReportData* data) {
-  MapFigure m;
-  std::error_code ec;
-  std::string path;
-  for (const std::string& p : {OrthoPath(config), OrthoVrtPath(config)}) {
-    if (fs::is_regular_file(p, ec)) path = p;
-  }
-  if (path.empty()) return m;
-  try {
-    const RasterFile ortho(path);
-    if (ortho.bands() != 4) throw Error(path + ": not an RGBA raster");
-    int cols = 0, rows = 0;
-    std::vector<std::vector<float>> bands;
-    for (int b = 1; b <= 4; ++b) bands.push_back(ortho.ReadOverview(o.map_target_px, &cols, &rows, b));
-    RgbImage image(cols, rows, 3, 0);
-    constexpr float kBackground = 235.0f;
-    for (int r = 0; r < rows; ++r) {
-      for (int c = 0; c < cols; ++c) {
-        const size_t i = static_cast<size_t>(r) * cols + c;
-        const float a = std::isfinite(bands[3][i]) ? bands[3][i] / 255.0f : 0.0f;
-        for (int k = 0; k < 3; ++k) {
-          const float v = std::isfinite(bands[k][i]) ? bands[k][i] : 0.0f;
-          image.at(r, c, k) = static_cast<uint8_t>(std::lround(std::clamp(a * v + (1 - a) * kBackground, 0.0f, 255.0f)));
-        }
+// The DSM's hill-shade thumbnail (dsm.png) from DIR/dsm.tif or DIR/dsm.vrt.
+RgbImage RenderDsmThumbnail(const RasterFile& dsm, int max_side, double* metres_per_px) {
+  int cols = 0, rows = 0;
+  const std::vector<float> z = dsm.ReadOverview(max_side, &cols, &rows);
+  *metres_per_px = dsm.window().cell_m * static_cast<double>(dsm.window().cols) / cols;
+  return RenderDsmHillShade(z, cols, rows, *metres_per_px, SourceMapStyle{});
+}
+
+// The true orthophoto's thumbnail (ortho.png) from DIR/ortho.tif or DIR/ortho.vrt (overviews averaged), its
+// transparent cells light grey.
+RgbImage RenderOrthoThumbnail(const RasterFile& ortho, int max_side, double* metres_per_px) {
+  if (ortho.bands() != 4) throw Error(ortho.path() + ": not an RGBA raster");
+  int cols = 0, rows = 0;
+  std::vector<std::vector<float>> bands;
+  for (int b = 1; b <= 4; ++b) bands.push_back(ortho.ReadOverview(max_side, &cols, &rows, b));
+  RgbImage image(cols, rows, 3, 0);
+  constexpr float kBackground = 235.0f;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c < cols; ++c) {
+      const size_t i = static_cast<size_t>(r) * cols + c;
+      const float a = std::isfinite(bands[3][i]) ? bands[3][i] / 255.0f : 0.0f;
+      for (int k = 0; k < 3; ++k) {
+        const float v = std::isfinite(bands[k][i]) ? bands[k][i] : 0.0f;
+        image.at(r, c, k) = static_cast<uint8_t>(std::lround(std::clamp(a * v + (1 - a) * kBackground, 0.0f, 255.0f)));
       }
     }
-    const double cell = ortho.window().cell_m * static_cast<double>(ortho.window().cols) / cols;
-    m.present = true;
-    m.file = "ortho.png";
-    WritePng((fs::path(report_dir) / m.file).string(), image);
-    m.width_px = image.width;
-    m.height_px = image.height;
-    m.x_min = ortho.window().west();
-    m.y_max = ortho.window().north();
-    m.metres_per_px = cell;
-    m.cell_m = ortho.window().cell_m;
-    m.cells_total = ortho.window().size();
-  } catch (const std::exception& e) {
-    data->warnings.push_back("no orthophoto picture: " + std::string(e.what()));
-    m = MapFigure{};
   }
-  return m;
+  *metres_per_px = ortho.window().cell_m * static_cast<double>(ortho.window().cols) / cols;
+  return image;
 }
 
 // The files holding the fused points of the strip: for a tiled run whose tiles are all done and placed, the tile
@@ -273,8 +260,10 @@ ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {
   } else {
     figures.profile.reason = data.cloud.exists ? data.cloud.name + " has no points" : "no " + data.cloud.name;
   }
-  figures.dsm = WriteDsmFigure(config, o, report_dir, &data);
-  figures.ortho = WriteOrthoFigure(config, o, report_dir, &data);
+  figures.dsm = WriteRasterFigure({DsmPath(config), DsmVrtPath(config)}, "dsm.png", "DSM", o, report_dir,
+                                  RenderDsmThumbnail, &data);
+  figures.ortho = WriteRasterFigure({OrthoPath(config), OrthoVrtPath(config)}, "ortho.png", "orthophoto", o,
+                                    report_dir, RenderOrthoThumbnail, &data);
   figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   figures.peak_rss_mib = PeakRssMiB();
   WriteFileAtomically((fs::path(report_dir) / kFiguresJson).string(), ReportFiguresToJson(figures));
