@@ -146,19 +146,24 @@ OrthoScores ScoreOrtho(const std::string& name, const RgbaGrid& ortho, const Rgb
   s.edge_cells = d.size();
   s.edge_median_cells = Quantile(d, 0.5);
   s.edge_p90_cells = Quantile(d, 0.9);
+  double total = 0.0;
+  for (const double x : d) total += x;
+  s.edge_mean_cells = d.empty() ? 0.0 : total / static_cast<double>(d.size());
   return s;
 }
 
 std::string FormatOrthoScores(const std::vector<OrthoScores>& scores) {
   std::string out = "Orthophoto against the reference ortho (cells the reference covers):\n";
   char line[512];
-  std::snprintf(line, sizeof(line), "  %-14s %10s %10s %9s %7s %24s %24s\n", "ortho", "cells", "coverage", "PSNR dB",
-                "SSIM", "edge shift median", "edge shift p90");
+  std::snprintf(line, sizeof(line), "  %-14s %10s %10s %9s %7s %24s %24s %24s\n", "ortho", "cells", "coverage",
+                "PSNR dB", "SSIM", "edge shift median", "edge shift p90", "edge shift mean");
   out += line;
   for (const OrthoScores& s : scores) {
-    std::snprintf(line, sizeof(line), "  %-14s %10llu %9.2f%% %9.2f %7.3f %8.2f cells %6.3f m %8.2f cells %6.3f m\n",
+    std::snprintf(line, sizeof(line),
+                  "  %-14s %10llu %9.2f%% %9.2f %7.3f %8.2f cells %6.3f m %8.2f cells %6.3f m %8.2f cells %6.3f m\n",
                   s.name.c_str(), static_cast<unsigned long long>(s.cells), 100.0 * s.coverage, s.psnr_db, s.ssim,
-                  s.edge_median_cells, s.edge_median_cells * s.cell_m, s.edge_p90_cells, s.edge_p90_cells * s.cell_m);
+                  s.edge_median_cells, s.edge_median_cells * s.cell_m, s.edge_p90_cells, s.edge_p90_cells * s.cell_m,
+                  s.edge_mean_cells, s.edge_mean_cells * s.cell_m);
     out += line;
   }
   return out;

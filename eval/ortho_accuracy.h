@@ -10,8 +10,8 @@
 //   SSIM          Wang et al. (2004) on the grey values (Gaussian window, sigma 1.5 cells, C1 = (0.01 255)^2,
 //                 C2 = (0.03 255)^2), averaged over the cells both cover whose 11 x 11 window both cover
 //   edge displacement  Canny edges (thresholds 50/150 on the grey values, 3 x 3 Sobel) of the reference, inside the
-//                 cells both cover (eroded by 3 cells), each at its distance to the nearest edge of the ortho: median
-//                 and 90th percentile, in cells and metres (building outlines that lean or smear move edges)
+//                 cells both cover (eroded by 3 cells), each at its distance to the nearest edge of the ortho: median,
+//                 90th percentile and mean, in cells and metres (building outlines that lean or smear move edges)
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -34,7 +34,7 @@ struct OrthoScores {
   double psnr_db = 0.0;
   double ssim = 0.0;
   uint64_t edge_cells = 0;     // reference edge cells measured
-  double edge_median_cells = 0.0, edge_p90_cells = 0.0;
+  double edge_median_cells = 0.0, edge_p90_cells = 0.0, edge_mean_cells = 0.0;
   double cell_m = 0.0;
 };
 

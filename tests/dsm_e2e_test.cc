@@ -232,15 +232,15 @@ TEST_F(DsmEndToEndTest, UntiledRunWritesATrueOrthoOnTheDsmCells) {
 
 // The scores `sacfuse eval --ortho` prints for one ortho: PSNR, SSIM, edge displacement median (cells).
 struct PrintedOrthoScores {
-  double coverage = 0, psnr = 0, ssim = 0, edge_median = 0, edge_p90 = 0;
+  double coverage = 0, psnr = 0, ssim = 0, edge_median = 0, edge_p90 = 0, edge_mean = 0;
 };
 PrintedOrthoScores ParseOrthoLine(const std::string& out, const std::string& name) {
   PrintedOrthoScores s;
   const size_t at = out.find("  " + name + " ");
   if (at == std::string::npos) return s;
   unsigned long long cells = 0;
-  std::sscanf(out.c_str() + at + 2 + name.size(), " %llu %lf%% %lf %lf %lf cells %*f m %lf", &cells, &s.coverage, &s.psnr,
-              &s.ssim, &s.edge_median, &s.edge_p90);
+  std::sscanf(out.c_str() + at + 2 + name.size(), " %llu %lf%% %lf %lf %lf cells %*f m %lf cells %*f m %lf", &cells,
+              &s.coverage, &s.psnr, &s.ssim, &s.edge_median, &s.edge_p90, &s.edge_mean);
   return s;
 }
 
