@@ -12,6 +12,7 @@ OrthoRule OrthoRuleForCell(double cell_m) {
   r.occlusion_tolerance_m = cell_m;
   r.self_distance_m = 1.5 * cell_m;
   r.step_m = 0.5 * cell_m;
+  r.wall_step_m = 2.0 * cell_m;
   return r;
 }
 
@@ -74,6 +75,18 @@ bool Sees(const OrthoView& view, const Eigen::Vector3d& x, const DsmPatch& dsm, 
   return ProjectsInside(view, x, &uv) && RayClearOfDsm(x, view.centre, dsm, rule);
 }
 
+// Whether one of the cell's 8 neighbours (inside the patch) is higher than z by more than the wall step.
+bool AtWall(const DsmPatch& dsm, int64_t col, int64_t row, float z, const OrthoRule& rule) {
+  for (int64_t dr = -1; dr <= 1; ++dr) {
+    for (int64_t dc = -1; dc <= 1; ++dc) {
+      if ((dr == 0 && dc == 0) || !dsm.window.Contains(col + dc, row + dr)) continue;
+      const float h = dsm.z[dsm.window.Index(col + dc, row + dr)];
+      if (std::isfinite(h) && h - z > rule.wall_step_m) return true;
+    }
+  }
+  return false;
+}
+
 // Cosine of the angle between X -> centre and the vertical (larger = more nadir).
 double NadirCosine(const OrthoView& view, const Eigen::Vector3d& x) {
   const Eigen::Vector3d d = view.centre - x;
@@ -94,7 +107,7 @@ std::vector<int32_t> OrthoCellViews(const DsmPatch& dsm, const CellWindow& inner
       if (!std::isfinite(z)) continue;
       const Eigen::Vector3d x = CellPoint(col, row, inner.cell_m, z);
       const size_t i = inner.Index(col, row);
-      const int32_t sel = selected.empty() ? -1 : selected[i];
+      const int32_t sel = selected.empty() || AtWall(dsm, col, row, z, rule) ? -1 : selected[i];
       if (sel >= 0 && static_cast<size_t>(sel) < views.size() && Sees(views[sel], x, dsm, rule)) {
         out[i] = sel;
         continue;

@@ -5,7 +5,7 @@
 // projects inside its image, and the ray from X to the view's centre never passes more than
 // OrthoRule::occlusion_tolerance_m below the DSM (RayClearOfDsm). The cell's view (OrthoCellViews) is
 //   1. the view SAC selected for the cell's surface (the source view of the point that made the cell's DSM height,
-//      jobs/ortho_product.h), when it sees X;
+//      jobs/ortho_product.h), when it sees X and the cell is not at a wall (OrthoRule::wall_step_m);
 //   2. else the most nadir view that sees X (smallest angle between the ray X -> centre and the vertical; ties to
 //      the lower view index), which is also the rule for cells without points (the DSM's filled holes);
 //   3. else none: the cell stays transparent.
@@ -32,9 +32,15 @@ struct OrthoRule {
   double max_ray_m = 60.0;
   // Step along the ray, horizontally, metres (half a cell by default).
   double step_m = 0.125;
+  // A cell with a neighbour (of its 8) higher by more than this is at the foot or on the face of a wall: its height
+  // may be a façade point's, and the view SAC selected there is the oblique that saw the façade, whose image shows
+  // the wall where a top view shows the roof's edge or the ground; such a cell takes the most nadir view that sees
+  // it (2 cells by default: steeper than 63 degrees).
+  double wall_step_m = 0.5;
 };
 
-// The rule for cells of `cell_m`: tolerance 1 cell, self distance 1.5 cells, step 0.5 cell, rays up to 60 m.
+// The rule for cells of `cell_m`: tolerance 1 cell, self distance 1.5 cells, step 0.5 cell, rays up to 60 m, wall
+// step 2 cells.
 OrthoRule OrthoRuleForCell(double cell_m);
 // Cells of context around a block the occlusion test reads (max_ray_m in cells, rounded up).
 int64_t OrthoHaloCells(const OrthoRule& rule, double cell_m);

@@ -53,6 +53,11 @@ TEST(OrthoRuleTest, AnOccludedSelectedViewGivesWayToTheViewThatSeesTheCell) {
   inner.rows = 1;
   EXPECT_EQ(OrthoCellViews(dsm, inner, {0}, views, rule), std::vector<int32_t>{1});  // selected 0 is occluded
   EXPECT_EQ(OrthoCellViews(dsm, inner, {1}, views, rule), std::vector<int32_t>{1});
+  // At the wall's west foot (19, 20), view 0 (east, beyond the wall) is hidden and view 1 sees it; a cell at a wall
+  // takes the most nadir view that sees it whatever was selected: view 2 straight above.
+  inner.col0 = 19;
+  const std::vector<OrthoView> three = {views[0], views[1], DownView(2, {9.75, 10.25, 20})};
+  EXPECT_EQ(OrthoCellViews(dsm, inner, {1}, three, rule), std::vector<int32_t>{2});
   // A roof cell (21, 20) is seen by both: the selected view keeps it.
   inner.col0 = 21;
   EXPECT_EQ(OrthoCellViews(dsm, inner, {0}, views, rule), std::vector<int32_t>{0});
