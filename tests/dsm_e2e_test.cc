@@ -94,11 +94,14 @@ TEST_F(DsmEndToEndTest, UntiledRunWritesAValidCogThatGdalReadsLikeWeDo) {
   if (!PythonHasGdal()) GTEST_SKIP() << kPython << " has no GDAL bindings (Debian: python3-gdal): COG validator and "
                                      << "independent reader not run";
   std::string out;
-  const int code = RunCommand(std::string(kPython) + " -m osgeo_utils.samples.validate_cloud_optimized_geotiff " +
-                                  ShellQuote(dsm) + " 2>&1",
-                              &out);
-  EXPECT_EQ(code, 0) << out;
-  EXPECT_NE(out.find("is a valid cloud optimized GeoTIFF"), std::string::npos) << out;
+  // GDAL's COG validator on both rasters of the run: the DSM and the true orthophoto.
+  for (const fs::path& raster : {fs::path(dsm), Out("untiled") / "ortho.tif"}) {
+    const int code = RunCommand(std::string(kPython) + " -m osgeo_utils.samples.validate_cloud_optimized_geotiff " +
+                                    ShellQuote(raster) + " 2>&1",
+                                &out);
+    EXPECT_EQ(code, 0) << raster << ": " << out;
+    EXPECT_NE(out.find("is a valid cloud optimized GeoTIFF"), std::string::npos) << raster << ": " << out;
+  }
   // GDAL's own reading: size, georeference, nodata, CRS (EPSG:25832), compression and predictor, tiles, overviews,
   // and every cell's value as a sum and count over the cells with a value.
   const fs::path script = Dir() / "read_dsm.py";
