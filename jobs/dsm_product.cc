@@ -53,11 +53,6 @@ double NearestNice(double v) {
   return best;
 }
 
-void RemoveQuietly(const std::string& path) {
-  std::error_code ec;
-  fs::remove_all(path, ec);
-}
-
 // The DSM's extent: the cells of the project area that meet the bounds of the points (so the raster does not
 // carry the empty margin of the views' footprints).
 CellWindow ExtentOfPoints(const DsmGrid& grid, const Box2d& points) {
@@ -215,14 +210,23 @@ std::vector<std::string> DsmTileProduct::Make(const PlannedTile& tile, const std
   return written;
 }
 
-void RemoveDsmFiles(const JobConfig& config) {
-  for (const std::string& path : {DsmPath(config), DsmVrtPath(config), DsmBlocksDir(config)}) {
+void RemoveQuietly(const std::string& path) {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
+void RemoveEarlierRasterFiles(const std::string& product, const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
     std::error_code ec;
     if (fs::exists(path, ec)) {
-      spdlog::info("dsm: removing {} of an earlier run", path);
+      spdlog::info("{}: removing {} of an earlier run", product, path);
       RemoveQuietly(path);
     }
   }
+}
+
+void RemoveDsmFiles(const JobConfig& config) {
+  RemoveEarlierRasterFiles("dsm", {DsmPath(config), DsmVrtPath(config), DsmBlocksDir(config)});
 }
 
 RasterOutput DsmRasterOutput(const JobConfig& config, const CellWindow& extent) {

@@ -85,6 +85,10 @@ DsmOutcome AssembleTiledDsm(const JobConfig& config, const TilePlan& plan, const
 // Grids `fused_las_path` over the grid and writes DIR/dsm.tif (or .vrt).
 DsmOutcome MakeUntiledDsm(const JobConfig& config, const DsmGrid& grid, const std::string& fused_las_path);
 
+// Removes a file or folder; absent is fine, failures are ignored (used for the other layout's files).
+void RemoveQuietly(const std::string& path);
+// Removes the files of a raster product an earlier run left (`product` names it in the log).
+void RemoveEarlierRasterFiles(const std::string& product, const std::vector<std::string>& paths);
 // Removes DIR/dsm.tif, DIR/dsm.vrt and DIR/dsm/ (a run that writes no DSM leaves none of an earlier run).
 void RemoveDsmFiles(const JobConfig& config);
 

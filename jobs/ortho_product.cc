@@ -42,11 +42,6 @@ RasterOutput OrthoRasterOutput(const JobConfig& config, bool blocks) {
   return out;
 }
 
-void RemoveQuietly(const std::string& path) {
-  std::error_code ec;
-  fs::remove_all(path, ec);
-}
-
 Box2d BoxOf(const CellWindow& w) { return Box2d(w.west(), w.south(), w.east(), w.north()); }
 
 // The SAC-selected view of every cell of `block` (north-up, -1 = none): the source view of the cell's point whose
@@ -102,13 +97,7 @@ OrthoCloud FusedCloud(const std::string& path) {
 }
 
 void RemoveOrthoFiles(const JobConfig& config) {
-  for (const std::string& path : {OrthoPath(config), OrthoVrtPath(config), OrthoBlocksDir(config)}) {
-    std::error_code ec;
-    if (fs::exists(path, ec)) {
-      spdlog::info("ortho: removing {} of an earlier run", path);
-      RemoveQuietly(path);
-    }
-  }
+  RemoveEarlierRasterFiles("ortho", {OrthoPath(config), OrthoVrtPath(config), OrthoBlocksDir(config)});
 }
 
 OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, const DsmOutcome& dsm,
