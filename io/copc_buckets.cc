@@ -1,11 +1,16 @@
 #include "io/copc_buckets.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
 #include <memory>
+
+#include <unistd.h>
+
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "io/las_format.h"
@@ -16,6 +21,7 @@ namespace lf = las_format;
 namespace {
 
 constexpr size_t kReadRecords = size_t{1} << 16;
+constexpr size_t kLoadPartBytes = size_t{8} << 20;  // a bucket is loaded in parts of this size, in parallel
 
 using File = UniqueFile;
 
@@ -130,10 +136,25 @@ std::vector<Bucket> MakeBuckets(const std::string& las_path, uint64_t point_offs
   return done;
 }
 
-std::vector<uint8_t> LoadBucket(const Bucket& bucket, size_t record_length) {
-  std::vector<uint8_t> records(static_cast<size_t>(bucket.points) * record_length);
+std::unique_ptr<uint8_t[]> LoadBucket(const Bucket& bucket, size_t record_length) {
+  const size_t bytes = static_cast<size_t>(bucket.points) * record_length;
+  // Not zeroed first: every byte is read. Parts read in parallel (the pages are mapped as they are read into).
+  std::unique_ptr<uint8_t[]> records(new uint8_t[std::max<size_t>(bytes, 1)]);
   File in = Open(bucket.path, "rb");
-  ReadAt(in.get(), bucket.offset, records.data(), records.size(), bucket.path);
+  const int fd = ::fileno(in.get());
+  const size_t parts = (bytes + kLoadPartBytes - 1) / kLoadPartBytes;
+  tbb::parallel_for(size_t{0}, parts, [&](size_t part) {
+    const size_t first = part * kLoadPartBytes, last = std::min(bytes, first + kLoadPartBytes);
+    for (size_t at = first; at < last;) {
+      const ssize_t got = ::pread(fd, records.get() + at, last - at, static_cast<off_t>(bucket.offset + at));
+      if (got <= 0) {
+        throw Error(bucket.path + ": cannot read " + std::to_string(last - at) + " bytes at " +
+                    std::to_string(bucket.offset + at) + (got < 0 ? " (" + std::string(std::strerror(errno)) + ")"
+                                                                  : std::string(" (the file ends before)")));
+      }
+      at += static_cast<size_t>(got);
+    }
+  });
   return records;
 }
 

@@ -10,6 +10,7 @@
 // input order, through write buffers of at most buffer_bytes in all, so the result does not depend on timing.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -30,7 +31,7 @@ std::vector<Bucket> MakeBuckets(const std::string& las_path, uint64_t point_offs
                                 size_t record_length, const Cube& cube, uint64_t max_points, size_t buffer_bytes,
                                 const std::string& dir);
 
-// The bucket's records (points x record_length bytes). Throws Error on I/O errors.
-std::vector<uint8_t> LoadBucket(const Bucket& bucket, size_t record_length);
+// The bucket's records (points x record_length bytes), read in parts in parallel. Throws Error on I/O errors.
+std::unique_ptr<uint8_t[]> LoadBucket(const Bucket& bucket, size_t record_length);
 
 }  // namespace sacfuse::copc

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <memory>
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "io/las_format.h"
@@ -99,47 +101,158 @@ void RecordView::Stored(uint32_t i, int32_t out[3]) const {
   out[2] = lf::GetI32(r + 8);
 }
 
-void SelectOnePerCell(const Cube& cube, const VoxelKey& node, const RecordView& records,
-                      const std::vector<uint32_t>& points, std::vector<uint32_t>* own, std::vector<uint32_t>* rest) {
-  // Open addressing on the cell id; at most kCells^3 = 2^21 cells are occupied, so 2^22 slots keep the load <= 1/2.
-  struct Slot {
-    uint32_t cell_plus_1 = 0;
-    uint32_t best = 0;  // position in `points`
-    double distance2 = 0.0;
-  };
-  size_t capacity = 16;
-  while (capacity < 2 * points.size() && capacity < (size_t{1} << 22)) capacity *= 2;
-  std::vector<Slot> slots(capacity);
-  const size_t mask = capacity - 1;
-  int32_t stored[3];
-  for (size_t pos = 0; pos < points.size(); ++pos) {
-    records.Stored(points[pos], stored);
-    double d2 = 0.0;
-    const uint32_t cell = cube.CellOf(stored, node, &d2);
-    size_t h = (static_cast<size_t>(cell) * 2654435761u) & mask;
-    while (true) {
-      Slot& s = slots[h];
-      if (s.cell_plus_1 == 0) {
-        s = {cell + 1, static_cast<uint32_t>(pos), d2};
-        break;
-      }
-      if (s.cell_plus_1 == cell + 1) {
-        if (d2 < s.distance2) {
-          s.best = static_cast<uint32_t>(pos);
-          s.distance2 = d2;
-        }
-        break;
-      }
-      h = (h + 1) & mask;
+namespace {
+
+// A node's 128^3 cells are chosen in 8^3 groups of 16^3 cells each: a group's points are chosen from alone, in a
+// table of its 4,096 cells, so the groups run in parallel and every point's choice is the one a serial pass makes.
+constexpr int kGroupBits = 3;
+constexpr int kCellInGroupBits = kCellBits - kGroupBits;
+constexpr int kGroups = 1 << (3 * kGroupBits);
+constexpr int kGroupCells = 1 << (3 * kCellInGroupBits);
+constexpr size_t kBlockPoints = size_t{1} << 15;  // points per task of the passes over all points
+
+int Axis(uint32_t cell, int axis) { return static_cast<int>((cell >> (kCellBits * axis)) & (kCells - 1)); }
+
+int CellInGroup(uint32_t cell) {
+  int c = 0;
+  for (int a = 0; a < 3; ++a) c |= (Axis(cell, a) & ((1 << kCellInGroupBits) - 1)) << (kCellInGroupBits * a);
+  return c;
+}
+
+// The child octant (1 = x, 2 = y, 4 = z) holding a group: the top bit of its position on each axis.
+int OctantOfGroup(int group) {
+  int octant = 0;
+  for (int a = 0; a < 3; ++a) octant |= ((group >> (kGroupBits * a + kGroupBits - 1)) & 1) << a;
+  return octant;
+}
+
+size_t Blocks(size_t n) { return (n + kBlockPoints - 1) / kBlockPoints; }
+
+// f(pos) for every pos < n, blocks of positions in parallel.
+template <typename F>
+void ForEachPosition(size_t n, const F& f) {
+  tbb::parallel_for(size_t{0}, Blocks(n), [&](size_t b) {
+    for (size_t pos = b * kBlockPoints; pos < std::min(n, (b + 1) * kBlockPoints); ++pos) f(pos);
+  });
+}
+
+// The nearest point found so far in each cell of a group (reused by the tasks of a thread; emptied after a group).
+struct Best {
+  uint32_t pos_plus_1 = 0;
+  double distance2 = 0.0;
+};
+struct GroupTable {
+  std::vector<Best> best = std::vector<Best>(kGroupCells);
+  std::vector<int> filled;
+};
+
+// Positions 0 .. bins.size() - 1 grouped by their bin (< num_bins), stably: bin b's positions are
+// order[start[b] .. start[b + 1]), increasing. Counted and scattered per block of positions in parallel.
+void GroupByBin(const std::vector<uint16_t>& bins, int num_bins, std::unique_ptr<uint32_t[]>* order,
+                std::vector<size_t>* start) {
+  const size_t n = bins.size(), blocks = Blocks(n), k = static_cast<size_t>(num_bins);
+  std::vector<size_t> at(blocks * k, 0);  // per block and bin: its count, then where its first position goes
+  tbb::parallel_for(size_t{0}, blocks, [&](size_t b) {
+    for (size_t pos = b * kBlockPoints; pos < std::min(n, (b + 1) * kBlockPoints); ++pos) ++at[b * k + bins[pos]];
+  });
+  start->assign(k + 1, 0);
+  size_t next = 0;
+  for (size_t bin = 0; bin < k; ++bin) {
+    (*start)[bin] = next;
+    for (size_t b = 0; b < blocks; ++b) {
+      const size_t count = at[b * k + bin];
+      at[b * k + bin] = next;
+      next += count;
     }
   }
-  std::vector<uint8_t> chosen(points.size(), 0);
-  for (const Slot& s : slots) {
-    if (s.cell_plus_1 != 0) chosen[s.best] = 1;
-  }
-  own->clear();
-  rest->clear();
-  for (size_t pos = 0; pos < points.size(); ++pos) (chosen[pos] ? own : rest)->push_back(points[pos]);
+  (*start)[k] = next;
+  order->reset(new uint32_t[std::max<size_t>(n, 1)]);  // not zeroed: every entry is written, in parallel
+  tbb::parallel_for(size_t{0}, blocks, [&](size_t b) {
+    size_t* where = &at[b * k];
+    for (size_t pos = b * kBlockPoints; pos < std::min(n, (b + 1) * kBlockPoints); ++pos) {
+      (*order)[where[bins[pos]]++] = static_cast<uint32_t>(pos);
+    }
+  });
+}
+
+// Per position in `points`: whether it is its cell's own point (the nearest to the cell's centre, ties to the
+// first), and its group of cells.
+void ChooseOnePerCell(const Cube& cube, const VoxelKey& node, const RecordView& records,
+                      const std::vector<uint32_t>& points, std::vector<uint8_t>* chosen, std::vector<uint16_t>* group) {
+  const size_t n = points.size();
+  group->resize(n);
+  const int group_level = node.level + kGroupBits;  // a group is a node's descendant at this level
+  const int32_t origin[3] = {node.x << kGroupBits, node.y << kGroupBits, node.z << kGroupBits};
+  ForEachPosition(n, [&](size_t pos) {
+    int32_t stored[3];
+    records.Stored(points[pos], stored);
+    const VoxelKey key = cube.KeyOf(stored, group_level);
+    (*group)[pos] = static_cast<uint16_t>((key.x - origin[0]) | (key.y - origin[1]) << kGroupBits |
+                                          (key.z - origin[2]) << (2 * kGroupBits));
+  });
+  std::unique_ptr<uint32_t[]> order;
+  std::vector<size_t> start;
+  GroupByBin(*group, kGroups, &order, &start);
+  chosen->resize(n);
+  ForEachPosition(n, [&](size_t pos) { (*chosen)[pos] = 0; });
+  tbb::enumerable_thread_specific<GroupTable> tables;
+  tbb::parallel_for(0, kGroups, [&](int g) {
+    if (start[g] == start[g + 1]) return;
+    GroupTable& table = tables.local();
+    int32_t stored[3];
+    for (size_t k = start[g]; k < start[g + 1]; ++k) {
+      const uint32_t pos = order[k];
+      records.Stored(points[pos], stored);
+      double d2 = 0.0;
+      const int cell = CellInGroup(cube.CellOf(stored, node, &d2));
+      Best& b = table.best[cell];
+      if (b.pos_plus_1 == 0) table.filled.push_back(cell);
+      if (b.pos_plus_1 == 0 || d2 < b.distance2) b = {pos + 1, d2};
+    }
+    for (const int cell : table.filled) {
+      (*chosen)[table.best[cell].pos_plus_1 - 1] = 1;
+      table.best[cell] = Best{};
+    }
+    table.filled.clear();
+  });
+}
+
+// points[pos] for the positions order[first .. last).
+std::vector<uint32_t> PointsAt(const std::vector<uint32_t>& points, const uint32_t* order, size_t first,
+                               size_t last) {
+  std::vector<uint32_t> out(last - first);
+  ForEachPosition(out.size(), [&](size_t i) { out[i] = points[order[first + i]]; });
+  return out;
+}
+
+// Splits `points` by bin (< num_bins) of each position, each part in the order of `points`.
+std::vector<std::vector<uint32_t>> SplitByBin(const std::vector<uint32_t>& points, const std::vector<uint16_t>& bins,
+                                              int num_bins) {
+  std::unique_ptr<uint32_t[]> order;
+  std::vector<size_t> start;
+  GroupByBin(bins, num_bins, &order, &start);
+  std::vector<std::vector<uint32_t>> parts(static_cast<size_t>(num_bins));
+  for (int b = 0; b < num_bins; ++b) parts[b] = PointsAt(points, order.get(), start[b], start[b + 1]);
+  return parts;
+}
+
+}  // namespace
+
+std::vector<uint32_t> AllIndices(size_t n) {
+  std::vector<uint32_t> indices(n);
+  ForEachPosition(n, [&](size_t i) { indices[i] = static_cast<uint32_t>(i); });
+  return indices;
+}
+
+void SelectOnePerCell(const Cube& cube, const VoxelKey& node, const RecordView& records,
+                      const std::vector<uint32_t>& points, std::vector<uint32_t>* own, std::vector<uint32_t>* rest) {
+  std::vector<uint8_t> chosen;
+  std::vector<uint16_t> bins;
+  ChooseOnePerCell(cube, node, records, points, &chosen, &bins);
+  ForEachPosition(points.size(), [&](size_t pos) { bins[pos] = chosen[pos] ? 0 : 1; });
+  std::vector<std::vector<uint32_t>> parts = SplitByBin(points, bins, 2);
+  *own = std::move(parts[0]);
+  *rest = std::move(parts[1]);
 }
 
 BuiltSubtree BuildSubtree(const Cube& cube, const VoxelKey& node, const RecordView& records,
@@ -149,21 +262,25 @@ BuiltSubtree BuildSubtree(const Cube& cube, const VoxelKey& node, const RecordVi
     out.own = std::move(points);
     return out;
   }
-  std::vector<uint32_t> rest;
-  SelectOnePerCell(cube, node, records, points, &out.own, &rest);
+  // Bins 0-7: the child octant of a point handed down; 8: the node's own points.
+  std::vector<uint8_t> chosen;
+  std::vector<uint16_t> bins;
+  ChooseOnePerCell(cube, node, records, points, &chosen, &bins);
+  ForEachPosition(points.size(), [&](size_t pos) {
+    bins[pos] = static_cast<uint16_t>(chosen[pos] ? 8 : OctantOfGroup(bins[pos]));
+  });
+  std::vector<std::vector<uint32_t>> parts = SplitByBin(points, bins, 9);
+  chosen = std::vector<uint8_t>();
+  bins = std::vector<uint16_t>();
+  out.own = std::move(parts[8]);
+  size_t handed_down = 0;
+  for (int o = 0; o < 8; ++o) handed_down += parts[o].size();
   points = std::vector<uint32_t>();
-  std::array<std::vector<uint32_t>, 8> children;
-  int32_t stored[3];
-  for (uint32_t i : rest) {
-    records.Stored(i, stored);
-    children[cube.OctantOf(stored, node)].push_back(i);
-  }
-  const bool parallel = rest.size() > kParallelPoints;
-  rest = std::vector<uint32_t>();
+  const bool parallel = handed_down > kParallelPoints;
   std::array<BuiltSubtree, 8> built;
   const auto build = [&](size_t o) {
-    if (!children[o].empty()) {
-      built[o] = BuildSubtree(cube, node.Child(static_cast<int>(o)), records, std::move(children[o]), max_points);
+    if (!parts[o].empty()) {
+      built[o] = BuildSubtree(cube, node.Child(static_cast<int>(o)), records, std::move(parts[o]), max_points);
     }
   };
   if (parallel) {

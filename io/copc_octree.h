@@ -63,8 +63,13 @@ struct RecordView {
   void Stored(uint32_t i, int32_t out[3]) const;
 };
 
+// 0, 1, ..., n - 1 (filled in parallel).
+std::vector<uint32_t> AllIndices(size_t n);
+
 // Splits `points` (indices into `records`) of `node` into its own points (one per occupied cell: the point
-// nearest the cell's centre, ties to the first in `points`) and the rest, both in the order of `points`.
+// nearest the cell's centre, ties to the first in `points`) and the rest, both in the order of `points`. In
+// parallel: the cells are chosen in 512 groups of 16^3 cells (each group's points alone, in a table of its
+// cells), the points sorted into groups and parts by parallel stable counting; the result is a serial pass's.
 void SelectOnePerCell(const Cube& cube, const VoxelKey& node, const RecordView& records,
                       const std::vector<uint32_t>& points, std::vector<uint32_t>* own, std::vector<uint32_t>* rest);
 
@@ -78,8 +83,8 @@ struct BuiltSubtree {
   std::vector<BuiltNode> descendants;  // every other node of the subtree with points, children before parents
 };
 
-// Builds the subtree under `node` from all its points (top-down, as described above); children are built in
-// parallel when large. The result is the same for any thread count.
+// Builds the subtree under `node` from all its points (top-down, as described above): each node's points split
+// as SelectOnePerCell does, children built in parallel when large. The result is the same for any thread count.
 BuiltSubtree BuildSubtree(const Cube& cube, const VoxelKey& node, const RecordView& records,
                           std::vector<uint32_t> points, size_t max_points);
 

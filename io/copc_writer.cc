@@ -4,7 +4,6 @@
 #include <chrono>
 #include <filesystem>
 #include <map>
-#include <numeric>
 #include <set>
 
 #include <spdlog/spdlog.h>
@@ -20,6 +19,7 @@
 namespace sacfuse {
 namespace fs = std::filesystem;
 namespace lf = las_format;
+using copc::AllIndices;
 using copc::BuiltNode;
 using copc::RecordView;
 using copc::VoxelKey;
@@ -29,12 +29,6 @@ namespace {
 constexpr uint64_t kBytesPerPoint = 96;  // a record of format 7, its indices and cell slots while a node is built
 constexpr uint64_t kMinBucketPoints = 4096;
 constexpr size_t kMaxBucketBuffers = size_t{64} << 20;
-
-std::vector<uint32_t> AllIndices(size_t n) {
-  std::vector<uint32_t> idx(n);
-  std::iota(idx.begin(), idx.end(), 0u);
-  return idx;
-}
 
 std::vector<uint8_t> Gather(const RecordView& records, const std::vector<uint32_t>& points) {
   std::vector<uint8_t> out(points.size() * records.record_length);
@@ -101,9 +95,9 @@ class TreeBuilder {
   }
 
   Candidates BuildBucket(const copc::Bucket& bucket) {
-    std::vector<uint8_t> records = copc::LoadBucket(bucket, record_length_);
+    const std::unique_ptr<uint8_t[]> records = copc::LoadBucket(bucket, record_length_);
     if (bucket.path != spill_path_) fs::remove(bucket.path);
-    const RecordView view{records.data(), record_length_};
+    const RecordView view{records.get(), record_length_};
     copc::BuiltSubtree subtree =
         copc::BuildSubtree(cube_, bucket.key, view, AllIndices(bucket.points), max_node_points_);
     file_->WriteNodes(view, subtree.descendants);

@@ -3,7 +3,8 @@
 // point inside its node's cube as readers compute it, the upper levels one point per cell of their 128^3 grid
 // (checked with the readers' floating-point bounds, not with the writer's integer cells), leaves within
 // max_node_points, hierarchy pages, `sacfuse validate`'s rules (io/copc_validate.h) passing; the out-of-core path
-// (buckets of a few thousand points); the same bytes for one and two threads; empty and 1-point files; refused
+// (buckets of a few thousand points); the parallel choice of a node's points against a serial one; the same bytes
+// for one, two and four threads; empty and 1-point files; refused
 // options; no file or work folder left by a writer destroyed before Close(); and broken files found by the
 // validator.
 #include "io/copc_writer.h"
@@ -262,6 +263,61 @@ TEST(CopcOctreeTest, KnownCubeAndTheNearestPointOfEachCell) {
   EXPECT_EQ(cube.KeyOf(low, 1), (VoxelKey{1, 0, 1, 0}));
 }
 
+// The parallel choice of one point per cell (cells chosen in groups, points sorted by parallel counting) is a
+// serial pass's: the nearest point to each cell's centre, ties to the first, checked against a map over every
+// cell on a dense cloud (~5 points per cell, ties among them: integer coordinates), at 1, 2 and 4 threads;
+// the subtree built from it keeps every point once.
+TEST(CopcOctreeTest, ParallelChoiceIsTheSerialOne) {
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int32_t> xy(0, 1023), z(7000, 7015);
+  std::vector<uint8_t> records;
+  const size_t n = 150000;
+  for (size_t i = 0; i < n; ++i) {
+    uint8_t r[12];
+    lf::PutI32(r, xy(rng));
+    lf::PutI32(r + 4, xy(rng));
+    lf::PutI32(r + 8, z(rng));
+    records.insert(records.end(), r, r + 12);
+  }
+  const copc::RecordView view{records.data(), 12};
+  std::array<int32_t, 3> lo{}, hi{};
+  for (int a = 0; a < 3; ++a) {
+    lo[a] = a == 2 ? 7000 : 0;
+    hi[a] = lo[a] + 2000;
+  }
+  const copc::Cube cube = copc::Cube::Around(lo, hi);
+  const VoxelKey node = cube.KeyOf(std::array<int32_t, 3>{100, 100, 7005}.data(), 1);
+  std::vector<uint32_t> points;
+  std::map<uint32_t, std::pair<double, uint32_t>> nearest;  // cell -> distance, first point at it
+  for (uint32_t i = 0; i < n; ++i) {
+    int32_t stored[3];
+    view.Stored(i, stored);
+    if (!(cube.KeyOf(stored, 1) == node)) continue;
+    points.push_back(i);
+    double d2 = 0.0;
+    const uint32_t cell = cube.CellOf(stored, node, &d2);
+    const auto it = nearest.find(cell);
+    if (it == nearest.end() || d2 < it->second.first) nearest[cell] = {d2, i};
+  }
+  ASSERT_GT(points.size(), n / 2);
+  std::set<uint32_t> expected_own;
+  for (const auto& [cell, best] : nearest) expected_own.insert(best.second);
+  ASSERT_LT(expected_own.size(), points.size() / 2) << "too few points per cell to test the ties";
+  for (int threads : {1, 2, 4}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    std::vector<uint32_t> own, rest;
+    copc::SelectOnePerCell(cube, node, view, points, &own, &rest);
+    EXPECT_TRUE(std::is_sorted(own.begin(), own.end()) && std::is_sorted(rest.begin(), rest.end()));
+    EXPECT_TRUE(std::set<uint32_t>(own.begin(), own.end()) == expected_own) << threads << " threads";
+    EXPECT_EQ(own.size() + rest.size(), points.size());
+    const copc::BuiltSubtree tree = copc::BuildSubtree(cube, node, view, points, 5000);
+    EXPECT_EQ(tree.own, own) << threads << " threads";
+    size_t total = tree.own.size();
+    for (const copc::BuiltNode& d : tree.descendants) total += d.points.size();
+    EXPECT_EQ(total, points.size());
+  }
+}
+
 // Out of core: 60,000 points in buckets of at most 5,000 (memory_bytes), nodes of at most 2,000, a hierarchy
 // page for every subtree of at least 3 nodes.
 TEST(CopcWriterTest, WritesAValidCopcWithEveryPointOnce) {
@@ -295,15 +351,20 @@ TEST(CopcWriterTest, WritesAValidCopcWithEveryPointOnce) {
               c.walk.nodes.size(), levels, c.walk.pages, c.points.at(VoxelKey{}).size());
 }
 
-TEST(CopcWriterTest, SameBytesForOneAndTwoThreads) {
+// Out of core (buckets of 8,000 points) and in one bucket: the same bytes for 1, 2 and 4 threads.
+TEST(CopcWriterTest, SameBytesForOneTwoAndFourThreads) {
   TempDir dir;
   const std::vector<LasPoint> pts = AerialPoints(30000, 3);
-  const CopcOptions copc = SmallBuild(8000, 1000);
-  for (int threads : {1, 2}) {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
-    WriteCopc((dir / ("t" + std::to_string(threads) + ".copc.laz")).string(), pts, UtmOptions(), copc);
+  for (const size_t bucket : {size_t{8000}, size_t{100000}}) {
+    const CopcOptions copc = SmallBuild(bucket, 1000);
+    for (int threads : {1, 2, 4}) {
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      WriteCopc((dir / ("t" + std::to_string(threads) + ".copc.laz")).string(), pts, UtmOptions(), copc);
+    }
+    const std::string one = testing::ReadFileBytes(dir / "t1.copc.laz");
+    EXPECT_TRUE(one == testing::ReadFileBytes(dir / "t2.copc.laz")) << "buckets of " << bucket;
+    EXPECT_TRUE(one == testing::ReadFileBytes(dir / "t4.copc.laz")) << "buckets of " << bucket;
   }
-  EXPECT_TRUE(testing::ReadFileBytes(dir / "t1.copc.laz") == testing::ReadFileBytes(dir / "t2.copc.laz"));
 }
 
 TEST(CopcWriterTest, EmptyAndOnePointFilesAreValid) {
