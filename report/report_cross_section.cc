@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <limits>
 
+#include <tbb/task_group.h>
+
 #include "io/las_reader.h"
 #include "report/report_png.h"
 #include "report/report_profile_figure.h"
@@ -61,22 +63,29 @@ ProfileFigure MakeCrossSection(const CrossSectionInputs& in, const std::string& 
   fig.gsd_m = gsd;
   fig.strip = strip;
 
+  // The three series are gathered at once (each sample its own, with its own seed): the fused points, the
+  // reference and the depth windows are read side by side.
   ProfileSample after(in.max_points, 11), reference(in.max_points, 12), before(in.max_points, 13);
-  SampleLasInStrip(in.after_files(strip.Box(), &fig.after_source), strip, &after);
+  const std::vector<std::string> after_files = in.after_files(strip.Box(), &fig.after_source);
+  tbb::task_group series;
+  series.run([&] { SampleLasInStrip(after_files, strip, &after); });
   if (!in.reference_las.empty()) {
-    SampleLasInStrip({in.reference_las}, strip, &reference, /*keep_source_id=*/false);
+    series.run([&] { SampleLasInStrip({in.reference_las}, strip, &reference, /*keep_source_id=*/false); });
     fig.has_reference = true;
   }
   if (has_before) {
-    try {
-      const DepthStripStats st = SampleDepthInStrip(*in.input, strip, &before);
-      fig.before_views = st.views_read;
-      fig.before_window_pixels = st.window_pixels;
-    } catch (const std::exception& e) {
-      has_before = false;
-      fig.before_reason = e.what();
-    }
+    series.run([&] {
+      try {
+        const DepthStripStats st = SampleDepthInStrip(*in.input, strip, &before);
+        fig.before_views = st.views_read;
+        fig.before_window_pixels = st.window_pixels;
+      } catch (const std::exception& e) {
+        has_before = false;
+        fig.before_reason = e.what();
+      }
+    });
   }
+  series.wait();
   fig.after_in_strip = after.seen();
   fig.after_drawn = after.points().size();
   fig.reference_in_strip = reference.seen();
@@ -95,15 +104,21 @@ ProfileFigure MakeCrossSection(const CrossSectionInputs& in, const std::string& 
   const std::vector<double> grid_z = NiceTicks(fig.frame.z_min, fig.frame.z_max, 5);
   const std::filesystem::path dir(report_dir);
   fig.after_file = "profile_after.png";
-  WritePng((dir / fig.after_file).string(),
-           RenderProfilePanel(after.points(), reference.points(), in.colours, fig.frame, grid_z));
+  if (has_before) fig.before_file = "profile_before.png";
+  tbb::task_group panels;  // the two panels drawn and encoded side by side
+  panels.run([&] {
+    WritePng((dir / fig.after_file).string(),
+             RenderProfilePanel(after.points(), reference.points(), in.colours, fig.frame, grid_z));
+  });
   if (has_before) {
-    ProfileStyle dense;
-    dense.alpha = 0.35;  // many overlapping views
-    fig.before_file = "profile_before.png";
-    WritePng((dir / fig.before_file).string(),
-             RenderProfilePanel(before.points(), reference.points(), in.colours, fig.frame, grid_z, dense));
+    panels.run([&] {
+      ProfileStyle dense;
+      dense.alpha = 0.35;  // many overlapping views
+      WritePng((dir / fig.before_file).string(),
+               RenderProfilePanel(before.points(), reference.points(), in.colours, fig.frame, grid_z, dense));
+    });
   }
+  panels.wait();
   fig.present = true;
   return fig;
 }

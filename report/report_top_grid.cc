@@ -28,14 +28,17 @@ std::optional<size_t> TopGrid::CellOf(double x, double y) const {
 bool TopGrid::Add(double x, double y, double z, uint16_t point_source_id) {
   const std::optional<size_t> cell = CellOf(x, y);
   if (!cell) return false;
-  const size_t i = *cell;
+  AddToCell(*cell, z, point_source_id);
+  return true;
+}
+
+void TopGrid::AddToCell(size_t i, double z, uint16_t point_source_id) {
   if (count[i] < std::numeric_limits<uint32_t>::max()) ++count[i];
   const float zf = static_cast<float>(z);
   if (std::isnan(top_z[i]) || zf > top_z[i]) {
     top_z[i] = zf;
     source_id[i] = point_source_id;
   }
-  return true;
 }
 
 double TopGridCellSize(double extent_x_m, double extent_y_m, uint64_t points, int max_cells, double min_cell_m) {

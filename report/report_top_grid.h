@@ -38,6 +38,8 @@ struct TopGrid {
   // Adds one point; a point higher than the cell's top replaces it (ties keep the first). Points outside the
   // grid are ignored (returns false).
   bool Add(double x, double y, double z, uint16_t point_source_id);
+  // Adds one point to cell `i` (< num_cells()), as Add does.
+  void AddToCell(size_t i, double z, uint16_t point_source_id);
 };
 
 // Cell size for a cloud of `points` over the XY box [min_x, max_x] x [min_y, max_y]: at least 2.5 x the mean point

@@ -6,9 +6,14 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <sstream>
 
 #include <spdlog/spdlog.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "config/output_layout.h"
 #include "core/error.h"
@@ -37,8 +42,24 @@ TopGrid ScanTopGrid(const ReportCloud& cloud, const ReportOptions& o) {
                              o.min_cell_m);
   LasReader reader(cloud.path);
   std::vector<LasPoint> chunk;
+  std::vector<size_t> cells;
+  constexpr size_t kOutside = std::numeric_limits<size_t>::max();
+  // The grid's rows in one band per thread: each band takes the chunk's points that fall in it, in the chunk's
+  // order, so every cell sees its points in the file's order (the top grid is the same for any thread count).
+  const size_t bands = std::min<size_t>(static_cast<size_t>(tbb::this_task_arena::max_concurrency()),
+                                        static_cast<size_t>(grid.height));
   while (reader.Read(&chunk, kLasChunk) > 0) {
-    for (const LasPoint& p : chunk) grid.Add(p.xyz.x(), p.xyz.y(), p.xyz.z(), p.point_source_id);
+    cells.resize(chunk.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i < r.end(); ++i) cells[i] = grid.CellOf(chunk[i].xyz.x(), chunk[i].xyz.y()).value_or(kOutside);
+    });
+    tbb::parallel_for(size_t{0}, bands, [&](size_t b) {
+      const size_t first = grid.Index(static_cast<int>(grid.height * b / bands), 0);
+      const size_t end = grid.Index(static_cast<int>(grid.height * (b + 1) / bands), 0);
+      for (size_t i = 0; i < chunk.size(); ++i) {
+        if (cells[i] >= first && cells[i] < end) grid.AddToCell(cells[i], chunk[i].xyz.z(), chunk[i].point_source_id);
+      }
+    });
   }
   return grid;
 }
@@ -67,11 +88,11 @@ MapFigure WriteMap(const TopGrid& grid, const std::vector<Rgb>& colours, uint64_
 // A raster product's thumbnail `file` in the report folder, from the first of `paths` that exists (the single COG
 // or the VRT), read at most map_target_px cells on its longer side (GDAL's overviews) and drawn by `render`
 // (the raster, the size read, the metres per sample read); absent when the run wrote neither. A raster that cannot
-// be read adds the warning "no <what> picture: ...".
+// be read adds the warning "no <what> picture: ..." to `warnings`.
 using ThumbnailRenderer = std::function<RgbImage(const RasterFile& raster, int max_side, double* metres_per_px)>;
 MapFigure WriteRasterFigure(const std::vector<std::string>& paths, const std::string& file, const std::string& what,
                             const ReportOptions& o, const std::string& report_dir, const ThumbnailRenderer& render,
-                            ReportData* data) {
+                            std::vector<std::string>* warnings) {
   MapFigure m;
   std::error_code ec;
   std::string path;
@@ -94,7 +115,7 @@ MapFigure WriteRasterFigure(const std::vector<std::string>& paths, const std::st
     m.cell_m = raster.window().cell_m;
     m.cells_total = raster.window().size();
   } catch (const std::exception& e) {
-    data->warnings.push_back("no " + what + " picture: " + std::string(e.what()));
+    warnings->push_back("no " + what + " picture: " + std::string(e.what()));
     m = MapFigure{};
   }
   return m;
@@ -231,12 +252,26 @@ ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {
   if (input && NeedsBeforeCounts(data)) FillBeforeCountsFromCache(*input, config, &data);
   const std::vector<Rgb> colours = ReportViewColours(data);
   ReportFigures figures;
+  // The pictures that need nothing of each other are drawn and encoded side by side: the DSM and orthophoto
+  // thumbnails from the start, the map once the top grid is scanned, beside the cross-section. Their warnings
+  // join the page's in a fixed order.
+  std::vector<std::string> dsm_warnings, ortho_warnings;
+  tbb::task_group pictures;
+  pictures.run([&] {
+    figures.dsm = WriteRasterFigure({DsmPath(config), DsmVrtPath(config)}, "dsm.png", "DSM", o, report_dir,
+                                    RenderDsmThumbnail, &dsm_warnings);
+  });
+  pictures.run([&] {
+    figures.ortho = WriteRasterFigure({OrthoPath(config), OrthoVrtPath(config)}, "ortho.png", "orthophoto", o,
+                                      report_dir, RenderOrthoThumbnail, &ortho_warnings);
+  });
   if (data.cloud.exists && data.cloud.points > 0) {
     const auto map_start = std::chrono::steady_clock::now();
     TopGrid grid;
+    bool scanned = false;
     try {
       grid = ScanTopGrid(data.cloud, o);
-      figures.map = WriteMap(grid, colours, data.cloud.points, o, report_dir);
+      scanned = true;
     } catch (const Error& e) {  // e.g. a cloud cut short after its header: no map, the rest of the report stays
       data.warnings.push_back(std::string("no map: ") + e.what());
       figures.profile.reason = "the fused cloud could not be read";
@@ -244,12 +279,28 @@ ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {
     const auto profile_start = std::chrono::steady_clock::now();
     figures.map_seconds = std::chrono::duration<double>(profile_start - map_start).count();
     if (!o.before_profile) input.reset();
-    if (figures.map.present) {
+    if (scanned) {
+      std::string map_error;
+      tbb::task_group map_picture;
+      map_picture.run([&] {
+        const auto start_map = std::chrono::steady_clock::now();
+        try {
+          figures.map = WriteMap(grid, colours, data.cloud.points, o, report_dir);
+        } catch (const Error& e) {
+          map_error = e.what();
+        }
+        figures.map_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_map).count();
+      });
+      const size_t map_warning_at = data.warnings.size();
       try {
         figures.profile = MakeCrossSection(CrossSectionFor(data, config, o, grid, input.get(), colours), report_dir);
       } catch (const Error& e) {
         figures.profile = ProfileFigure{};
         figures.profile.reason = e.what();
+      }
+      map_picture.wait();
+      if (!map_error.empty()) {
+        data.warnings.insert(data.warnings.begin() + static_cast<std::ptrdiff_t>(map_warning_at), "no map: " + map_error);
       }
       if (!figures.profile.before_reason.empty()) {
         data.warnings.push_back("no 'before' cross-section: " + figures.profile.before_reason);
@@ -260,10 +311,9 @@ ReportFigures WriteHtmlReport(const JobConfig& config, const ReportOptions& o) {
   } else {
     figures.profile.reason = data.cloud.exists ? data.cloud.name + " has no points" : "no " + data.cloud.name;
   }
-  figures.dsm = WriteRasterFigure({DsmPath(config), DsmVrtPath(config)}, "dsm.png", "DSM", o, report_dir,
-                                  RenderDsmThumbnail, &data);
-  figures.ortho = WriteRasterFigure({OrthoPath(config), OrthoVrtPath(config)}, "ortho.png", "orthophoto", o,
-                                    report_dir, RenderOrthoThumbnail, &data);
+  pictures.wait();
+  data.warnings.insert(data.warnings.end(), dsm_warnings.begin(), dsm_warnings.end());
+  data.warnings.insert(data.warnings.end(), ortho_warnings.begin(), ortho_warnings.end());
   figures.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   figures.peak_rss_mib = PeakRssMiB();
   WriteFileAtomically((fs::path(report_dir) / kFiguresJson).string(), ReportFiguresToJson(figures));
