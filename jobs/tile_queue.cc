@@ -85,6 +85,7 @@ MergeJobOutcome MergeJob(const JobConfig& given, OutputWriterLock& lock) {
   RemoveTemporaryFilesOfGoneProcesses(given, &lock);
   JobConfig config;
   const std::unique_ptr<DepthBlock> input = OpenTiledInput(given, &config);
+  const ThreadLimit thread_limit(EffectiveThreads(config));  // resources.threads, as a run's merge
   const BlockIdentity identity = IdentifyBlock(*input);
   lock.Record(ResultSettingsHash(config), IdentitiesDigest(identity.views));
   const TilePlan plan = SharedTilePlan(config, *input, identity.views);

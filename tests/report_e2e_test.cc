@@ -1,7 +1,8 @@
 // End-to-end: the HTML run report as `sacfuse run` and `sacfuse report` write it for a simulated tiny block,
 // untiled and tiled: a self-contained page (only relative links to files that exist beside it, pictures that
-// decode), the right "before" counts per view, scores once scored, corrupt inputs and an unwritable report folder
-// that do not fail anything, and a headless-Chromium screenshot that shows the map (skipped without chromium).
+// decode), the same page and pictures on one thread as on every core, the right "before" counts per view, scores
+// once scored, corrupt inputs and an unwritable report folder that do not fail anything, and a headless-Chromium
+// screenshot that shows the map (skipped without chromium).
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -162,6 +163,17 @@ TEST_F(ReportEndToEndTest, ReportCommandWritesElsewhereAndLeavesTheRunAlone) {
     return std::regex_replace(html, std::regex("report written [0-9: -]+|pictures took [0-9.]+ s \\(process peak RSS [0-9]+"), "");
   };
   EXPECT_EQ(strip_time(Page(elsewhere)), strip_time(Page(Out("untiled") / "report")));
+  // On one thread (the run used every core): the same page and the same pictures, byte for byte.
+  const fs::path one_thread = Dir() / "one_thread";
+  ASSERT_EQ(RunCommand(SacfuseBinary() + " report " + ShellQuote(Config("untiled")) +
+                           " --set resources.threads=1 --out " + ShellQuote(one_thread),
+                       &out),
+            0)
+      << out;
+  EXPECT_EQ(strip_time(Page(one_thread)), strip_time(Page(Out("untiled") / "report")));
+  for (const char* png : {"map.png", "profile_after.png", "profile_before.png"}) {
+    EXPECT_TRUE(ReadFileBytes(one_thread / png) == ReadFileBytes(Out("untiled") / "report" / png)) << png;
+  }
 }
 
 TEST_F(ReportEndToEndTest, CorruptRunFilesGiveAPageWithWarnings) {

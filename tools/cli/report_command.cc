@@ -10,7 +10,9 @@
 
 #include "config/job_config.h"
 #include "core/error.h"
+#include "jobs/auto_tiling.h"
 #include "jobs/output_lock.h"
+#include "jobs/thread_limit.h"
 #include "jobs/job_report.h"
 #include "report/report_writer.h"
 #include "jobs/run_state.h"
@@ -33,6 +35,7 @@ int ReportCommand(const ReportArgs& args) {
     throw InputError(config.output.dir, "no run output here (output.dir of " + args.config.path + "); run it first");
   }
   const OutputWorkerLock lock(config);  // writes DIR/report beside a run (jobs/output_lock.h)
+  const ThreadLimit thread_limit(EffectiveThreads(config));  // resources.threads, as the run's report
   ReportOptions options = JobReportOptions(config);  // the input opened from config.input when needed
   options.report_dir = args.out_dir;
   options.before_profile = !args.no_before;
