@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include "core/error.h"
@@ -51,9 +52,19 @@ class Distributor {
   Distributor(const Cube& cube, int level, size_t record_length, size_t buffer_bytes, const std::string& dir)
       : cube_(cube), level_(level), record_length_(record_length), buffer_bytes_(buffer_bytes), dir_(dir) {}
 
-  void Add(const uint8_t* record) {
+  // The node of a record at the level (any thread).
+  VoxelKey KeyOf(const uint8_t* record) const {
     const int32_t stored[3] = {lf::GetI32(record), lf::GetI32(record + 4), lf::GetI32(record + 8)};
-    std::vector<uint8_t>& buffer = buffers_[cube_.KeyOf(stored, level_)];
+    return cube_.KeyOf(stored, level_);
+  }
+
+  // Appends a record to the bucket of `key` (= KeyOf(record)).
+  void Add(const uint8_t* record, const VoxelKey& key) {
+    if (last_ == nullptr || !(key == last_key_)) {  // consecutive records mostly share their node
+      last_ = &buffers_[key];
+      last_key_ = key;
+    }
+    std::vector<uint8_t>& buffer = *last_;
     buffer.insert(buffer.end(), record, record + record_length_);
     buffered_ += record_length_;
     if (buffered_ >= buffer_bytes_) Flush();
@@ -93,6 +104,8 @@ class Distributor {
   std::map<VoxelKey, std::vector<uint8_t>> buffers_;
   std::map<VoxelKey, uint64_t> points_;
   size_t buffered_ = 0;
+  VoxelKey last_key_;
+  std::vector<uint8_t>* last_ = nullptr;  // buffers_[last_key_] (map entries stay where they are)
 };
 
 // Distributes the records of `source` to the nodes of `level`.
@@ -101,11 +114,16 @@ std::vector<Bucket> Distribute(const Bucket& source, size_t record_length, const
   Distributor out(cube, level, record_length, buffer_bytes, dir);
   File in = Open(source.path, "rb");
   std::vector<uint8_t> block;
+  std::vector<VoxelKey> keys;
   for (uint64_t done = 0; done < source.points;) {
     const size_t n = static_cast<size_t>(std::min<uint64_t>(kReadRecords, source.points - done));
     block.resize(n * record_length);
     ReadAt(in.get(), source.offset + done * record_length, block.data(), block.size(), source.path);
-    for (size_t i = 0; i < n; ++i) out.Add(&block[i * record_length]);
+    keys.resize(n);  // the records' nodes in parallel, then appended in order
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+      for (size_t i = r.begin(); i < r.end(); ++i) keys[i] = out.KeyOf(&block[i * record_length]);
+    });
+    for (size_t i = 0; i < n; ++i) out.Add(&block[i * record_length], keys[i]);
     done += n;
   }
   return out.Finish();

@@ -6,8 +6,9 @@
 // A cloud of at most max_points points is one bucket, the root, read straight from the LAS file. A larger one is
 // distributed to the nodes of level L = ceil(log4(3 N / max_points)) (aerial clouds are 2.5D: a level has ~4^L
 // occupied nodes, and 3x leaves room for uneven density); a bucket still above max_points is distributed again to
-// its descendants, until each fits or its node cannot be split (Cube::max_node_level). Records are appended in
-// input order, through write buffers of at most buffer_bytes in all, so the result does not depend on timing.
+// its descendants, until each fits or its node cannot be split (Cube::max_node_level). The records' nodes are
+// computed in parallel, a block at a time; records are appended in input order, through write buffers of at most
+// buffer_bytes in all, so the result does not depend on timing or threads.
 #include <cstddef>
 #include <cstdint>
 #include <memory>
