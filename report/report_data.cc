@@ -2,12 +2,15 @@
 
 #include <chrono>
 #include <ctime>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
+#include <tbb/parallel_for.h>
 
 #include "config/output_layout.h"
 #include "config/result_settings.h"
@@ -162,11 +165,18 @@ std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::str
       warnings->push_back(config.output.dir + "/plan.json unreadable (" + e.what() + "): tiles placed by id");
     }
   }
-  try {
-    for (const std::string& id : manifest->tiles) {
+  // Every tile's state read in parallel (each reads its marker and its file's header), then taken in the
+  // manifest's order: a tile whose state cannot be read ends the list there with a warning.
+  struct TileState {
+    std::optional<ReportTile> tile;  // unset: not a tile id
+    std::exception_ptr error;
+  };
+  std::vector<TileState> states(manifest->tiles.size());
+  tbb::parallel_for(size_t{0}, states.size(), [&](size_t i) {
+    try {
       ReportTile t;
-      t.id = id;
-      if (!ParseTileId(t.id, &t.ix, &t.iy)) continue;
+      t.id = manifest->tiles[i];
+      if (!ParseTileId(t.id, &t.ix, &t.iy)) return;
       if (const auto it = planned.find(t.id); it != planned.end()) {
         t.has_core = true;
         t.core = it->second.first;
@@ -189,10 +199,21 @@ std::vector<ReportTile> GatherTiles(const JobConfig& given, std::vector<std::str
         t.status = TileStatus::kPending;
         t.reason = check.reason;
       }
-      tiles.push_back(t);
+      states[i].tile = std::move(t);
+    } catch (...) {
+      states[i].error = std::current_exception();
     }
-  } catch (const std::exception& e) {
-    warnings->push_back(tiles_dir + ": tile states unreadable (" + e.what() + ")");
+  });
+  for (TileState& state : states) {
+    if (state.error) {
+      try {
+        std::rethrow_exception(state.error);
+      } catch (const std::exception& e) {
+        warnings->push_back(tiles_dir + ": tile states unreadable (" + e.what() + ")");
+      }
+      break;
+    }
+    if (state.tile) tiles.push_back(std::move(*state.tile));
   }
   return tiles;
 }
