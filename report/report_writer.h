@@ -4,7 +4,9 @@
 // plus the input views for the "before" cross-section. Bounded at block scale: fused.las is streamed once into a
 // fixed-size top grid (at most max_map_cells per side), the cross-section reads only the points and depth windows
 // of its strip (tile files instead of fused.las when the run was tiled), and at most max_profile_points per series
-// are kept. Every file is written atomically; index.html last.
+// are kept. Every file is written atomically; index.html last. On every thread: the top grid is filled in bands
+// of rows, the strip's series are gathered side by side (each in a fixed order), and the pictures are drawn and
+// encoded as tasks beside each other; the pictures and the page are the same for any thread count.
 #include <functional>
 #include <memory>
 #include <string>
