@@ -179,6 +179,9 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
   s.AddInt("fusion.weak_support_min_views", &f.weak_support_min_views, Affects("views", Closed(0, 64), kSac),
            "outliers: views (own included) a point needs where a view that could see it (not occluded) has no depth "
            "there; at most 1 + the views that could see it (0 = off; 3 for raw single-pair stereo depth maps)");
+  s.AddInt("fusion.weak_support_rim_px", &f.weak_support_rim_px, Affects("px", Closed(0, kDepthEdgeReachPx), kSac),
+           "weak support: a pixel this close to a hole of its own depth map needs weak_support_min_views agreeing "
+           "views even where fewer could see it (0 = off; no effect while weak_support_min_views is 0)");
   s.AddDouble("fusion.correspondence_tolerance_sigmas", &f.correspondence_tolerance_sigmas,
               Affects("sigma", AtLeast(0), kSac),
               "reprojection correspondences: also agree within this many sigmas of estimated noise (0 = off)");

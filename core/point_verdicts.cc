@@ -28,9 +28,17 @@ bool UnmatchedAt(const SacView& b, const DepthLookup& hit, double tolerance) {
                            [&](float q) { return IsValidDepth(q) && q < near_m; });
 }
 
-// `hits[k]`: the point looked up in neighbors[k].
+// Whether pixel (row, col) of `view` lies within options.weak_support_rim_px of a hole of its own depth map (weak
+// support on): the rim of what the matcher matched. Pixels off the raster are no hole (the image border is not a rim).
+bool OnMatchedRim(const SacView& view, int row, int col, const SacOptions& options) {
+  return options.weak_support_min_views > 0 && options.weak_support_rim_px > 0 &&
+         AnyDepthInWindow(*view.depth, row, col, options.weak_support_rim_px, [](float q) { return !IsValidDepth(q); });
+}
+
+// `hits[k]`: the point looked up in neighbors[k]. `on_rim`: OnMatchedRim of the point's pixel.
 bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, const std::vector<uint32_t>& neighbors,
-                       const DepthLookup* hits, const std::vector<double>& noise_factor, const SacOptions& options) {
+                       const DepthLookup* hits, const std::vector<double>& noise_factor, const SacOptions& options,
+                       bool on_rim) {
   if (options.min_consistent_views <= 1) return true;
   // Views that can observe the point: they agree, or they see through it (free space). Views where it is occluded
   // (their surface lies in front) cannot judge it and are not counted. Unmatched views could observe it but have no
@@ -76,6 +84,9 @@ bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, 
     required = std::min(
         required, std::max(2, 1 + static_cast<int>(std::lround(options.outlier_expected_factor * expected_agree))));
   }
+  // On the rim of its own map's matched region a point needs weak_support_min_views maps however few views observe it
+  // (and whatever the noise lets agree): there the matcher's single-pair depths stray most (docs/design.md).
+  if (on_rim) required = std::max(required, std::min(options.min_consistent_views, options.weak_support_min_views));
   return agree >= required;
 }
 
@@ -203,7 +214,10 @@ PointVerdict PointVerdicts::Judge(uint32_t v, int row, int col) const {
   for (size_t k = 0; k < near.size(); ++k) {
     if (hits[k].inside) hits[k].stored_depth_m = views_[near[k]].depth->at(hits[k].row, hits[k].col);
   }
-  if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_)) return PointVerdict::kOutlier;
+  if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_,
+                         OnMatchedRim(view, row, col, options_))) {
+    return PointVerdict::kOutlier;
+  }
   if (options_.free_space_min_views > 0 &&
       InFreeSpace(views_, v, row, col, point, d, judges_.At(v, point), neighbor_slot_[v], hits.data(), ceilings_,
                   noise_factor_, options_)) {

@@ -16,6 +16,10 @@
 //    still passes with that view). Unmatched views count in E as observers do. Why: a raw stereo depth and its partner view's depth come from the same match
 //    and share its errors, so a blunder of single-pair depths in shadow or at the rim of what the matcher could match
 //    "agrees" with one view while the others found nothing (Brighton Beach raw maps, docs/design.md).
+//    The rim rule (weak_support_rim_px, 2; only with weak support on): a pixel within that many pixels of a hole of its
+//    own depth map, on the rim of what the matcher matched, needs weak_support_min_views maps (at most
+//    min_consistent_views) however few views observe it and whatever the noise cap allows: at the rim a matcher's
+//    depths stray most, confirmed by the partner that shares the match (Brighton Beach raw maps, docs/design.md).
 //  * Free space (visibility, Merrell et al., ICCV 2007): X is dropped when at least free_space_min_views of the
 //    judging views (the combine views, up to 40) see through it: their depth at X's projection lies beyond X by more
 //    than the tolerance and more than free_space_sigmas sigma of the two depths' difference, so X floats in space

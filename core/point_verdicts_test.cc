@@ -428,5 +428,35 @@ TEST_F(WeakSupportTest, ASurfaceOnlyOneOtherViewSeesAtTheBlockEdgeIsKept) {
   EXPECT_EQ(VerdictAt(block, WeakSupport(), kEdgeRow, kEdgeCol), PointVerdict::kOutlier);
 }
 
+// The rim rule (weak_support_rim_px): a blunder 2 m above the plane at view 0's west edge, matched alike by view 3,
+// the one other view that sees the place (a stereo partner shares the match). Away from holes of view 0's own map it
+// passes with view 3's confirmation (2 of 2 maps); beside a hole of view 0's map (the rim of what the matcher matched)
+// it needs weak_support_min_views = 3 maps and is removed, while the plane 4 pixels from that hole is kept.
+TEST_F(WeakSupportTest, ABlunderOnTheRimOfItsOwnMatchedRegionNeedsTheWeakSupportViews) {
+  SyntheticBlock block = Block();
+  block.depths[0].at(kEdgeRow, kEdgeCol) -= 2.0f;
+  {
+    const std::vector<SacView> views = block.SacViews();
+    const Eigen::Vector3d blunder =
+        PixelPoint(views[0], kEdgeRow, kEdgeCol, block.depths[0].at(kEdgeRow, kEdgeCol));
+    const DepthLookup in3 = ProjectIntoDepth(views[3], views[3].PointInCamera(blunder));
+    ASSERT_TRUE(in3.inside);
+    block.depths[3].at(in3.row, in3.col) = static_cast<float>(in3.z_m);  // the partner's shared error
+  }
+  SacOptions options = WeakSupport();
+  ASSERT_EQ(options.weak_support_rim_px, 2);  // the default
+  EXPECT_EQ(VerdictAt(block, options, kEdgeRow, kEdgeCol), PointVerdict::kPasses);  // no hole near: 2 of 2 agree
+
+  block.depths[0].at(kEdgeRow, kEdgeCol + 2) = 0.0f;  // a hole 2 pixels east: the pixel is on the rim
+  EXPECT_EQ(VerdictAt(block, options, kEdgeRow, kEdgeCol), PointVerdict::kOutlier);
+  EXPECT_EQ(VerdictAt(block, options, kEdgeRow, kEdgeCol + 6), PointVerdict::kPasses);  // 4 pixels from the hole
+  SacOptions no_rim = options;
+  no_rim.weak_support_rim_px = 0;
+  EXPECT_EQ(VerdictAt(block, no_rim, kEdgeRow, kEdgeCol), PointVerdict::kPasses);
+  SacOptions off = options;
+  off.weak_support_min_views = 0;  // the rim rule belongs to weak support
+  EXPECT_EQ(VerdictAt(block, off, kEdgeRow, kEdgeCol), PointVerdict::kPasses);
+}
+
 }  // namespace
 }  // namespace sacfuse

@@ -36,6 +36,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("SacOptions.correspondence_tolerance_sigmas", o.correspondence_tolerance_sigmas, 0.0);
   c.AtLeast("SacOptions.outlier_expected_factor", o.outlier_expected_factor, 0.0);
   c.InRange("SacOptions.weak_support_min_views", o.weak_support_min_views, 0, 64);
+  c.InRange("SacOptions.weak_support_rim_px", o.weak_support_rim_px, 0, kDepthEdgeReachPx);
   c.AtLeast("SacOptions.coverage_tolerance_sigmas", o.coverage_tolerance_sigmas, 0.0);
   c.OneOf("SacOptions.combine", o.combine, {"select", "average"});
   c.Greater("SacOptions.combine_gate_gsd", o.combine_gate_gsd, 0.0);
