@@ -274,12 +274,14 @@ void RunUntiled(const JobConfig& config, const DepthBlock& input, const RunProgr
   // The DSM over the project area, the same extent a tiled run of the block has (the one-tile plan's area).
   if (const std::optional<DsmGrid> dsm = DsmGridOf(config, input, BuildTilePlan(input, config.tiling).grid.area())) {
     summary->dsm = MakeUntiledDsm(config, *dsm, summary->las_path);
+    clock->Mark("DSM");
   } else {
     RemoveDsmFiles(config);
   }
   summary->ortho = MakeOrthoOfRun(config, input, summary->dsm,
                                   summary->dsm.written ? std::vector<OrthoCloud>{FusedCloud(summary->las_path)}
                                                        : std::vector<OrthoCloud>{});
+  if (summary->ortho.written) clock->Mark("true ortho");
   for (size_t i = 0; i < views.size(); ++i) {
     const uint32_t v = views[i].index;
     summary->views[i].output_points = v < fused.points_per_view.size() ? fused.points_per_view[v] : 0;

@@ -97,11 +97,13 @@ TiledRunOutcome RunTiledJob(const JobConfig& config, const DepthBlock& input, co
   out.points_per_view = merged.points_per_view;
   if (dsm) {
     out.dsm = AssembleTiledDsm(config, plan, *dsm);
+    mark("DSM");
   } else {
     RemoveDsmFiles(config);
   }
   out.ortho = MakeOrthoOfRun(config, input, out.dsm, out.dsm.written ? TiledRunClouds(config, plan)
                                                                      : std::vector<OrthoCloud>{});
+  if (out.ortho.written) mark("true ortho");
   return out;
 }
 
