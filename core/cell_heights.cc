@@ -1,8 +1,13 @@
 #include "core/cell_heights.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_sort.h>
 
 #include "core/error.h"
 
@@ -22,6 +27,9 @@ float FromOrderedBits(uint32_t b) {
   std::memcpy(&v, &b, sizeof(v));
   return v;
 }
+
+// No key: a raster index of 2^32 - 1 is never a cell's (windows have fewer than 2^32 cells).
+constexpr uint64_t kNoKey = ~uint64_t{0};
 
 // The position of the q-quantile among `count` sorted values (count > 0).
 size_t QuantilePosition(size_t count, double quantile) {
@@ -70,9 +78,33 @@ void CellHeights::AddToCell(int64_t col, int64_t row, double z) {
   keys_.push_back((static_cast<uint64_t>(window_.Index(col, row)) << 32) | OrderedBits(static_cast<float>(z)));
 }
 
+void CellHeights::AddInParallel(size_t count, const PointCell& point_cell) {
+  const size_t first = keys_.size();
+  keys_.resize(first + count);
+  std::atomic<uint64_t> ignored{0};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, count, 4096), [&](const tbb::blocked_range<size_t>& range) {
+    uint64_t range_ignored = 0;
+    for (size_t i = range.begin(); i < range.end(); ++i) {
+      int64_t col = 0, row = 0;
+      double z = 0;
+      uint64_t& key = keys_[first + i];
+      key = kNoKey;
+      if (!point_cell(i, &col, &row, &z)) continue;
+      if (!std::isfinite(z)) {
+        ++range_ignored;
+        continue;
+      }
+      key = (static_cast<uint64_t>(window_.Index(col, row)) << 32) | OrderedBits(static_cast<float>(z));
+    }
+    ignored += range_ignored;
+  });
+  keys_.erase(std::remove(keys_.begin() + static_cast<std::ptrdiff_t>(first), keys_.end(), kNoKey), keys_.end());
+  ignored_ += ignored.load();
+}
+
 std::vector<float> CellHeights::Reduce(double quantile, int min_points) {
   std::vector<float> values(window_.size(), kNoCellValue);
-  std::sort(keys_.begin(), keys_.end());
+  tbb::parallel_sort(keys_.begin(), keys_.end());  // equal keys are equal values: the order is the serial sort's
   const size_t n = keys_.size();
   for (size_t begin = 0; begin < n;) {
     const uint64_t cell = keys_[begin] >> 32;

@@ -4,7 +4,9 @@
 // values, as ../shared/aerial-bench/score_dsm.py grids clouds), or no value (NaN) for a cell with fewer than
 // min_points points. q = 1 is the highest point. Memory: 8 bytes per point added, so callers give it the
 // points of one tile or one band of a cloud, never an unbounded stream.
+#include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -27,11 +29,17 @@ class CellHeights {
   // z is kept as float (the raster's type). Add ignores points outside the window (counted in ignored()).
   void Add(double x, double y, double z);
   void AddToCell(int64_t col, int64_t row, double z);  // (col, row) must lie in the window
+  // The cell (inside the window) and z of point i of a batch; false leaves the point out.
+  using PointCell = std::function<bool(size_t i, int64_t* col, int64_t* row, double* z)>;
+  // AddToCell of every point i in [0, count) that point_cell places, on the job's threads (point_cell is called
+  // concurrently). The values Reduce gives do not depend on the order in which points were added.
+  void AddInParallel(size_t count, const PointCell& point_cell);
   uint64_t points() const { return keys_.size(); }
   uint64_t ignored() const { return ignored_; }
   const CellWindow& window() const { return window_; }
 
-  // One value per cell of the window, north-up (CellWindow::Index); consumes the points.
+  // One value per cell of the window, north-up (CellWindow::Index); consumes the points. Sorts on the job's
+  // threads.
   std::vector<float> Reduce(double quantile, int min_points);
 
  private:

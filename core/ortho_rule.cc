@@ -5,6 +5,9 @@
 #include <limits>
 #include <utility>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 namespace sacfuse {
 
 OrthoRule OrthoRuleForCell(double cell_m) {
@@ -99,34 +102,38 @@ double NadirCosine(const OrthoView& view, const Eigen::Vector3d& x) {
 std::vector<int32_t> OrthoCellViews(const DsmPatch& dsm, const CellWindow& inner, const std::vector<int32_t>& selected,
                                     const std::vector<OrthoView>& views, const OrthoRule& rule) {
   std::vector<int32_t> out(inner.size(), -1);
-  std::vector<std::pair<double, uint32_t>> candidates;
-  for (int64_t row = inner.row0; row < inner.row0 + inner.rows; ++row) {
-    for (int64_t col = inner.col0; col < inner.col0 + inner.cols; ++col) {
-      if (!dsm.window.Contains(col, row)) continue;
-      const float z = dsm.z[dsm.window.Index(col, row)];
-      if (!std::isfinite(z)) continue;
-      const Eigen::Vector3d x = CellPoint(col, row, inner.cell_m, z);
-      const size_t i = inner.Index(col, row);
-      const int32_t sel = selected.empty() || AtWall(dsm, col, row, z, rule) ? -1 : selected[i];
-      if (sel >= 0 && static_cast<size_t>(sel) < views.size() && Sees(views[sel], x, dsm, rule)) {
-        out[i] = sel;
-        continue;
-      }
-      candidates.clear();
-      Eigen::Vector2d uv;
-      for (const OrthoView& v : views) {
-        if (static_cast<int32_t>(v.index) == sel || !ProjectsInside(v, x, &uv)) continue;
-        candidates.emplace_back(-NadirCosine(v, x), v.index);
-      }
-      std::sort(candidates.begin(), candidates.end());
-      for (const auto& [unused, index] : candidates) {
-        if (RayClearOfDsm(x, views[index].centre, dsm, rule)) {
-          out[i] = static_cast<int32_t>(index);
-          break;
+  // Every cell on its own (its view depends only on the patch): rows on the job's threads.
+  tbb::parallel_for(tbb::blocked_range<int64_t>(inner.row0, inner.row0 + inner.rows, 8),
+                    [&](const tbb::blocked_range<int64_t>& rows) {
+    std::vector<std::pair<double, uint32_t>> candidates;
+    for (int64_t row = rows.begin(); row < rows.end(); ++row) {
+      for (int64_t col = inner.col0; col < inner.col0 + inner.cols; ++col) {
+        if (!dsm.window.Contains(col, row)) continue;
+        const float z = dsm.z[dsm.window.Index(col, row)];
+        if (!std::isfinite(z)) continue;
+        const Eigen::Vector3d x = CellPoint(col, row, inner.cell_m, z);
+        const size_t i = inner.Index(col, row);
+        const int32_t sel = selected.empty() || AtWall(dsm, col, row, z, rule) ? -1 : selected[i];
+        if (sel >= 0 && static_cast<size_t>(sel) < views.size() && Sees(views[sel], x, dsm, rule)) {
+          out[i] = sel;
+          continue;
+        }
+        candidates.clear();
+        Eigen::Vector2d uv;
+        for (const OrthoView& v : views) {
+          if (static_cast<int32_t>(v.index) == sel || !ProjectsInside(v, x, &uv)) continue;
+          candidates.emplace_back(-NadirCosine(v, x), v.index);
+        }
+        std::sort(candidates.begin(), candidates.end());
+        for (const auto& [unused, index] : candidates) {
+          if (RayClearOfDsm(x, views[index].centre, dsm, rule)) {
+            out[i] = static_cast<int32_t>(index);
+            break;
+          }
         }
       }
     }
-  }
+  });
   return out;
 }
 

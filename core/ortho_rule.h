@@ -68,7 +68,7 @@ bool RayClearOfDsm(const Eigen::Vector3d& x, const Eigen::Vector3d& centre, cons
 
 // The view of every cell of `inner` (north-up; -1 = none) by the rule above. `selected` (north-up over `inner`)
 // holds the SAC-selected view index per cell or -1; `dsm` must contain `inner` (grown by OrthoHaloCells for exact
-// occlusion). `views` are indexed by view index (views[i].index == i).
+// occlusion). `views` are indexed by view index (views[i].index == i). Rows run on the job's threads (TBB).
 std::vector<int32_t> OrthoCellViews(const DsmPatch& dsm, const CellWindow& inner, const std::vector<int32_t>& selected,
                                     const std::vector<OrthoView>& views, const OrthoRule& rule);
 

@@ -1,6 +1,7 @@
 #include "io/cloud_grid.h"
 
 #include <algorithm>
+#include <atomic>
 
 #include "core/cell_heights.h"
 
@@ -57,16 +58,19 @@ CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const Cloud
     CellHeights heights(band);
     cloud.Rewind();
     ++out.passes;
+    const bool count_outside = bands.size() == 1 || &band == &bands.front();
     while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
-      for (size_t i = 0; i < chunk.xyz.size(); ++i) {
+      std::atomic<uint64_t> outside{0};
+      heights.AddInParallel(chunk.xyz.size(), [&](size_t i, int64_t* col, int64_t* row, double* z) {
         const Eigen::Vector3d& p = chunk.xyz[i];
-        int64_t col = 0, row = 0;
-        if (!kept(chunk.classification[i]) || !locate.CellOf(p.x(), p.y(), &col, &row)) {
-          if (bands.size() == 1 || &band == &bands.front()) ++out.points_outside;
-          continue;
+        if (!kept(chunk.classification[i]) || !locate.CellOf(p.x(), p.y(), col, row)) {
+          if (count_outside) outside.fetch_add(1, std::memory_order_relaxed);
+          return false;
         }
-        if (band.Contains(col, row)) heights.AddToCell(col, row, p.z());
-      }
+        *z = p.z();
+        return band.Contains(*col, *row);
+      });
+      out.points_outside += outside.load();
     }
     out.points_gridded += heights.points();
     const std::vector<float> v = heights.Reduce(options.quantile, options.min_points);

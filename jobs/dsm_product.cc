@@ -6,6 +6,7 @@
 #include <set>
 
 #include <spdlog/spdlog.h>
+#include <tbb/parallel_for.h>
 
 #include "config/output_layout.h"
 #include "core/cell_heights.h"
@@ -105,10 +106,16 @@ RawCellPatch SharedCellPatch(const std::string& tiles_dir, const TilePlan& plan,
     const auto& [col, row] = entry.first;
     owners.insert(TileGrid::Id(plan.grid.TileOf(CellEdge(col, cell) + 0.5 * cell, CellEdge(row, cell) + 0.5 * cell)));
   }
+  std::vector<const PlannedTile*> owner_tiles;
   for (const PlannedTile& tile : plan.tiles) {
-    if (!owners.count(tile.id)) continue;
+    if (owners.count(tile.id)) owner_tiles.push_back(&tile);
+  }
+  // The owners' passes run on the job's threads: each owner adds only to the cells of its core, which no other
+  // owner holds (a cell's heights are sorted before their quantile is taken: their order does not matter).
+  tbb::parallel_for(size_t{0}, owner_tiles.size(), [&](size_t t) {
+    const PlannedTile& tile = *owner_tiles[t];
     const auto marker = ReadTileDoneMarker(tiles_dir, tile.id);
-    if (!marker || marker->points == 0) continue;
+    if (!marker || marker->points == 0) return;
     const CellWindow core = CellWindowOfHalfOpen(tile.core, cell).Intersection(grid.extent);
     PointCloudFile cloud(TileCloudPath(tiles_dir, *marker));
     CloudChunk chunk;
@@ -117,13 +124,19 @@ RawCellPatch SharedCellPatch(const std::string& tiles_dir, const TilePlan& plan,
         if (!p.allFinite()) continue;
         const int64_t col = CellIndexOf(p.x(), cell), row = CellIndexOf(p.y(), cell);
         if (!core.Contains(col, row)) continue;
-        const auto it = heights.find({col, row});
+        const auto it = heights.find({col, row});  // the map's shape does not change here: finds are safe
         if (it != heights.end()) it->second.push_back(static_cast<float>(p.z()));
       }
     }
-  }
+  });
+  std::vector<std::pair<const std::pair<int64_t, int64_t>, std::vector<float>>*> cells;
+  for (auto& entry : heights) cells.push_back(&entry);
+  std::vector<float> values(cells.size());
+  tbb::parallel_for(size_t{0}, cells.size(), [&](size_t i) {
+    values[i] = CellValueOf(&cells[i]->second, grid.rule.quantile, grid.rule.min_points);
+  });
   RawCellPatch patch;
-  for (auto& [cr, z] : heights) patch.emplace(cr, CellValueOf(&z, grid.rule.quantile, grid.rule.min_points));
+  for (size_t i = 0; i < cells.size(); ++i) patch.emplace_hint(patch.end(), cells[i]->first, values[i]);
   spdlog::info("dsm: {} cells got points from two tiles or more (recomputed from {} tiles' points)", patch.size(),
                owners.size());
   return patch;

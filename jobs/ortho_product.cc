@@ -1,12 +1,16 @@
 #include "jobs/ortho_product.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <map>
 
 #include <spdlog/spdlog.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include "config/output_layout.h"
 #include "core/error.h"
@@ -46,32 +50,50 @@ Box2d BoxOf(const CellWindow& w) { return Box2d(w.west(), w.south(), w.east(), w
 
 // The SAC-selected view of every cell of `block` (north-up, -1 = none): the source view of the cell's point whose
 // float height is nearest the cell's DSM height (the median point, whose height the DSM holds exactly), ties to
-// the lower view index. Reads the points of the clouds whose bounds meet the block.
+// the lower view index. Reads the points of the clouds whose bounds meet the block, the clouds and each chunk's
+// points on the job's threads: a cell keeps the least (|dz| bits, view) pair, which does not depend on the order in
+// which its points come (|dz| >= 0, so its float bits order as the values).
 std::vector<int32_t> SelectedViews(const std::vector<OrthoCloud>& clouds, const CellWindow& block, const DsmPatch& dsm,
                                    size_t view_count) {
-  std::vector<int32_t> view(block.size(), -1);
-  std::vector<float> best(block.size(), INFINITY);
+  constexpr uint64_t kNone = ~uint64_t{0};
+  std::vector<std::atomic<uint64_t>> best(block.size());
+  for (std::atomic<uint64_t>& b : best) b.store(kNone, std::memory_order_relaxed);
   const Box2d box = BoxOf(block);
   const double cell = block.cell_m;
-  CloudChunk chunk;
+  std::vector<const OrthoCloud*> meeting;
   for (const OrthoCloud& c : clouds) {
-    if (c.bounds.IsEmpty() || !c.bounds.Intersects(box)) continue;
-    PointCloudFile cloud(c.path);
+    if (!c.bounds.IsEmpty() && c.bounds.Intersects(box)) meeting.push_back(&c);
+  }
+  tbb::parallel_for(size_t{0}, meeting.size(), [&](size_t c) {
+    PointCloudFile cloud(meeting[c]->path);
+    CloudChunk chunk;
     while (cloud.Read(&chunk, kCloudReadChunkPoints) > 0) {
-      for (size_t k = 0; k < chunk.xyz.size(); ++k) {
-        const Eigen::Vector3d& p = chunk.xyz[k];
-        const uint16_t source = chunk.source_id[k];
-        if (source == 0 || source > view_count || !p.allFinite()) continue;
-        const int64_t col = CellIndexOf(p.x(), cell), row = CellIndexOf(p.y(), cell);
-        if (!block.Contains(col, row)) continue;
-        const float h = dsm.z[dsm.window.Index(col, row)];
-        if (!std::isfinite(h)) continue;
-        const size_t i = block.Index(col, row);
-        const float dz = std::abs(static_cast<float>(p.z()) - h);
-        const int32_t v = static_cast<int32_t>(source) - 1;
-        if (dz < best[i] || (dz == best[i] && v < view[i])) best[i] = dz, view[i] = v;
-      }
+      tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk.xyz.size(), 4096),
+                        [&](const tbb::blocked_range<size_t>& range) {
+        for (size_t k = range.begin(); k < range.end(); ++k) {
+          const Eigen::Vector3d& p = chunk.xyz[k];
+          const uint16_t source = chunk.source_id[k];
+          if (source == 0 || source > view_count || !p.allFinite()) continue;
+          const int64_t col = CellIndexOf(p.x(), cell), row = CellIndexOf(p.y(), cell);
+          if (!block.Contains(col, row)) continue;
+          const float h = dsm.z[dsm.window.Index(col, row)];
+          if (!std::isfinite(h)) continue;
+          uint32_t dz_bits = 0;
+          const float dz = std::abs(static_cast<float>(p.z()) - h);
+          std::memcpy(&dz_bits, &dz, sizeof(dz_bits));
+          const uint64_t key = (static_cast<uint64_t>(dz_bits) << 32) | static_cast<uint32_t>(source - 1);
+          std::atomic<uint64_t>& b = best[block.Index(col, row)];
+          uint64_t seen = b.load(std::memory_order_relaxed);
+          while (key < seen && !b.compare_exchange_weak(seen, key, std::memory_order_relaxed)) {
+          }
+        }
+      });
     }
+  });
+  std::vector<int32_t> view(block.size(), -1);
+  for (size_t i = 0; i < view.size(); ++i) {
+    const uint64_t b = best[i].load(std::memory_order_relaxed);
+    if (b != kNone) view[i] = static_cast<int32_t>(b & 0xffffffffu);
   }
   return view;
 }
@@ -131,7 +153,7 @@ OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, co
     const std::vector<int32_t> chosen = OrthoCellViews(patch, block, selected, views, rule);
     const size_t n = block.size();
     std::vector<uint8_t> rgba(4 * n, 0);
-    std::map<int32_t, std::vector<size_t>> cells_of_view;  // ascending views: one image decoded at a time
+    std::map<int32_t, std::vector<size_t>> cells_of_view;  // by view: each image is decoded once for the block
     for (size_t i = 0; i < n; ++i) {
       if (chosen[i] >= 0) {
         cells_of_view[chosen[i]].push_back(i);
@@ -142,23 +164,34 @@ OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, co
         if (std::isfinite(patch.z[outer.Index(col, row)])) ++out.cells_unseen;
       }
     }
-    for (const auto& [v, cells] : cells_of_view) {
-      const View& view = input.views()[v];
-      const RgbImage image = input.ReadImage(view);
-      ++out.image_reads;
-      if (image.empty()) continue;  // an input without images: those cells stay transparent
-      const PinholeCamera camera = view.camera.Scaled(image.width, image.height);
-      for (const size_t i : cells) {
-        const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
-        const int64_t row = block.row0 + block.rows - 1 - static_cast<int64_t>(i / block.cols);
-        const std::array<uint8_t, 3> rgb =
-            CellColour(image, camera, view.cam_from_world, CellPoint(col, row, cell, patch.z[outer.Index(col, row)]),
-                       cell);
-        for (int c = 0; c < 3; ++c) rgba[c * n + i] = rgb[c];
-        rgba[3 * n + i] = 255;
-        ++*cells_with_value;
+    // The views on the job's threads, each decoding its image and colouring its own cells (one image per thread
+    // at a time); the views with the most cells first, so that no long one starts last.
+    std::vector<const std::pair<const int32_t, std::vector<size_t>>*> order;
+    for (const auto& entry : cells_of_view) order.push_back(&entry);
+    std::stable_sort(order.begin(), order.end(),
+                     [](const auto* a, const auto* b) { return a->second.size() > b->second.size(); });
+    std::atomic<uint64_t> coloured{0}, reads{0};
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t o = range.begin(); o < range.end(); ++o) {
+        const auto& [v, cells] = *order[o];
+        const View& view = input.views()[v];
+        const RgbImage image = input.ReadImage(view);
+        ++reads;
+        if (image.empty()) continue;  // an input without images: those cells stay transparent
+        const PinholeCamera camera = view.camera.Scaled(image.width, image.height);
+        for (const size_t i : cells) {
+          const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
+          const int64_t row = block.row0 + block.rows - 1 - static_cast<int64_t>(i / block.cols);
+          const std::array<uint8_t, 3> rgb = CellColour(image, camera, view.cam_from_world,
+                                                        CellPoint(col, row, cell, patch.z[outer.Index(col, row)]), cell);
+          for (int c = 0; c < 3; ++c) rgba[c * n + i] = rgb[c];
+          rgba[3 * n + i] = 255;
+        }
+        coloured += cells.size();
       }
-    }
+    }, tbb::simple_partitioner());
+    *cells_with_value += coloured.load();
+    out.image_reads += reads.load();
     return rgba;
   };
   const AssemblyStats stats =
