@@ -203,17 +203,6 @@ cv::Mat BlockDepthChannel(const DepthMap& depth, const cv::Rect& r, const Superp
   return depth_channel;
 }
 
-// OpenCV builds its RGB -> Lab tables lazily on the first conversion, without a lock: views segmented at once
-// (jobs/view_batches.h) each built them and one copy leaked (~3.5 MB, LeakSanitizer). So the first conversion of
-// the process runs once, before any other (std::call_once blocks the other callers until it is done).
-void InitLabTablesOnce() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    cv::Mat lab;
-    cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar(0, 0, 0)), lab, cv::COLOR_RGB2Lab);
-  });
-}
-
 // The block's 8-bit Lab image (CV_8UC3) on the depth grid, into `lab` (its buffer is reused when large enough).
 void BlockLab(const RgbImage& image, const DepthMap& depth, const cv::Rect& r, cv::Mat* lab) {
   cv::cvtColor(BlockRgb(image, depth, r), *lab, cv::COLOR_RGB2Lab);
@@ -455,6 +444,17 @@ std::string Rule(const std::string& field, const T& value, const std::string& ru
 
 }  // namespace
 
+// OpenCV builds its RGB -> Lab tables lazily on the first conversion, without a lock: views segmented at once
+// (jobs/view_batches.h) each built them and one copy leaked (~3.5 MB, LeakSanitizer). So the first conversion of
+// the process runs once, before any other (std::call_once blocks the other callers until it is done).
+void PrepareSuperpixelTables() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    cv::Mat lab;
+    cv::cvtColor(cv::Mat(1, 1, CV_8UC3, cv::Scalar(0, 0, 0)), lab, cv::COLOR_RGB2Lab);
+  });
+}
+
 void ValidateSuperpixelOptions(const SuperpixelOptions& o) {
   std::vector<std::string> errors;
   if (o.region_size_px < 2 || o.region_size_px > 128) {
@@ -486,7 +486,7 @@ SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, c
                                  LabelPacking packing) {
   ValidateSuperpixelOptions(options);
   ValidateInputs(image, depth);
-  InitLabTablesOnce();
+  PrepareSuperpixelTables();
 
   SuperpixelMap map;
   map.width = depth.width;

@@ -71,6 +71,11 @@ struct SuperpixelMap {
 SuperpixelMap ComputeSuperpixels(const RgbImage& image, const DepthMap& depth, const SuperpixelOptions& options,
                                  LabelPacking packing = LabelPacking::kPacked);
 
+// Builds the process's colour-conversion tables that ComputeSuperpixels' first call would otherwise build while
+// every other caller waits (OpenCV's RGB -> Lab tables, ~0.1 s of one thread); once per process, thread-safe, and
+// a no-op when done. A job runs it beside its first stages (jobs/run_fusion.h), so no superpixel stage waits.
+void PrepareSuperpixelTables();
+
 // Throws ConfigError listing every broken rule as "SuperpixelOptions.<field> = v: rule", one per line (an invariant
 // of ComputeSuperpixels; the YAML keys superpixels.* are checked by config/option_table.cc).
 void ValidateSuperpixelOptions(const SuperpixelOptions& options);

@@ -14,6 +14,7 @@
 #include <cpl_error.h>
 #include <cpl_string.h>
 #include <spdlog/spdlog.h>
+#include <tbb/global_control.h>
 
 #include "core/error.h"
 #include "io/atomic_file.h"
@@ -82,6 +83,13 @@ class CslOptions {
  private:
   char** list_ = nullptr;
 };
+
+// GDAL's compression threads for a file written now: the job's thread count (resources.threads caps TBB's
+// parallelism, jobs/thread_limit.h). GDAL compresses the tiles in parallel and writes them in order, so the file's
+// bytes do not depend on the count.
+std::string CompressionThreads() {
+  return std::to_string(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+}
 
 std::string Predictor(RasterSampleType type) { return type == RasterSampleType::kFloat32 ? "3" : "2"; }
 
@@ -159,7 +167,7 @@ void CopyToCog(GDALDataset& source, const RasterFormat& format, const std::strin
   GDALDriver* cog = GetGDALDriverManager()->GetDriverByName("COG");
   if (cog == nullptr) throw Error(path + ": this GDAL has no COG driver (GDAL >= 3.1 is needed)");
   const CslOptions options{{"COMPRESS", "DEFLATE"},  {"PREDICTOR", "YES"},      {"BLOCKSIZE", "512"},
-                           {"OVERVIEWS", "AUTO"},    {"BIGTIFF", "IF_SAFER"},   {"NUM_THREADS", "1"},
+                           {"OVERVIEWS", "AUTO"},    {"BIGTIFF", "IF_SAFER"},   {"NUM_THREADS", CompressionThreads()},
                            {"RESAMPLING", format.overview_resampling}};
   const std::string temp = TemporaryPathFor(path);
   CPLErrorReset();
@@ -198,7 +206,8 @@ void WriteRasterFile(const std::string& path, const CellWindow& window, const Ra
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
   CslOptions options{{"TILED", "YES"},       {"BLOCKXSIZE", "256"},
                            {"BLOCKYSIZE", "256"},  {"COMPRESS", "DEFLATE"},
-                           {"PREDICTOR", Predictor(format.type)}, {"BIGTIFF", "IF_SAFER"}};
+                           {"PREDICTOR", Predictor(format.type)}, {"BIGTIFF", "IF_SAFER"},
+                           {"NUM_THREADS", CompressionThreads()}};
   AddColourOptions(format, &options);
   const std::string temp = TemporaryPathFor(path);
   try {
@@ -239,7 +248,7 @@ CogBuilder::CogBuilder(const std::string& path, const CellWindow& extent, const 
   // Fast compression: this file lives only until the COG is written.
   CslOptions options{{"TILED", "YES"},        {"BLOCKXSIZE", "512"}, {"BLOCKYSIZE", "512"},
                            {"COMPRESS", "DEFLATE"}, {"ZLEVEL", "1"},       {"PREDICTOR", Predictor(format.type)},
-                           {"BIGTIFF", "IF_SAFER"}, {"SPARSE_OK", "TRUE"}};
+                           {"BIGTIFF", "IF_SAFER"}, {"SPARSE_OK", "TRUE"},   {"NUM_THREADS", CompressionThreads()}};
   AddColourOptions(format, &options);
   CPLErrorReset();
   impl_->dataset.reset(gtiff->Create(impl_->temp.c_str(), static_cast<int>(extent.cols), static_cast<int>(extent.rows),

@@ -7,11 +7,13 @@
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <tbb/task_group.h>
 
 #include "config/output_layout.h"
 #include "config/result_settings.h"
 #include "config/version.h"
 #include "core/error.h"
+#include "core/superpixels.h"
 #include "eval/eval_runner.h"
 #include "io/atomic_file.h"
 #include "io/depth_block.h"
@@ -341,7 +343,12 @@ RunSummary RunFusionJob(const JobConfig& given, OutputWriterLock& lock, const Ru
   config = ResolveTiling(given, *block, &decision);
   clock.Mark("tiling decision");
   const ThreadLimit thread_limit(EffectiveThreads(config));
+  // The superpixels' one-time tables are built on the pool beside co-registration (whose parallel loops take the
+  // task up when a thread is free), not at the first view while the other threads wait for them.
+  tbb::task_group tables;
+  if (MakeFusionMethod(config.fusion)->needs().superpixels) tables.run([] { PrepareSuperpixelTables(); });
   block = WithCoregisteredPoses(config, std::move(block), &summary.coregistration);
+  tables.wait();
   if (summary.coregistration.enabled) clock.Mark("co-registration");
   const DepthBlock& input = *block;
   const auto& views = input.views();

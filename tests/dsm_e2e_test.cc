@@ -11,7 +11,8 @@
 //     the CRS; scored by `sacfuse eval --ortho` against the simulator's reference ortho (simulate
 //     --truth-ortho-cell) it covers more, has a higher PSNR and SSIM and sharper edges than the ortho of the
 //     points' colours; the tiled run's ortho (VRT layout) agrees
-//     with the untiled run's wherever their clouds give the cell the same height and view.
+//     with the untiled run's wherever their clouds give the cell the same height and view;
+// (e) `sacfuse merge` of the tiled run's tiles on 1 and 4 threads writes the same DSM and ortho bytes as the run.
 // The Python checks skip with a message when /usr/bin/python3 has no GDAL bindings (Debian's python3-gdal).
 #include <cmath>
 #include <cstdio>
@@ -309,6 +310,45 @@ TEST_F(DsmEndToEndTest, TiledOrthoIsOnTheTiledDsmAndAgreesWithTheUntiledOne) {
   EXPECT_GT(same_height, both / 4) << same_height << " of " << both;  // 37 % of the cells on this block
   EXPECT_GT(identical, 0.8 * same_height) << identical << " of " << same_height;
   EXPECT_GT(close, 0.95 * same_height) << close << " of " << same_height;
+}
+
+// The DSM and the ortho are made on the job's threads, and their bytes do not depend on how many: `sacfuse merge`
+// of a copy of the tiled run's tiles on 1 thread writes the run's block files (made on every core) byte for byte,
+// and on 1 and 4 threads into one COG each (output.raster_layout: single) the same dsm.tif and ortho.tif.
+TEST_F(DsmEndToEndTest, DsmAndOrthoAreTheSameBytesOnAnyThreadCount) {
+  const fs::path copy = Dir() / "threads";
+  fs::copy(Out("tiled"), copy, fs::copy_options::recursive);
+  const auto merge = [&](int threads, const std::string& layout) {
+    std::string out;
+    ASSERT_EQ(RunCommand(SacfuseBinary() + " merge " + ShellQuote(Config("tiled")) + " --output-dir " +
+                             ShellQuote(copy) + " --set resources.threads=" + std::to_string(threads) +
+                             " --set output.raster_layout=" + layout,
+                         &out),
+              0)
+        << out;
+  };
+  merge(1, "tiles");
+  size_t blocks = 0;
+  for (const std::string product : {"dsm", "ortho"}) {
+    for (const auto& e : fs::directory_iterator(Out("tiled") / product)) {
+      const fs::path again = copy / product / e.path().filename();
+      ASSERT_TRUE(fs::exists(again)) << again;
+      EXPECT_TRUE(testing::ReadFileBytes(e.path()) == testing::ReadFileBytes(again)) << again;
+      ++blocks;
+    }
+  }
+  EXPECT_GE(blocks, 2u);
+  std::vector<std::string> one_thread;
+  for (const int threads : {1, 4}) {
+    merge(threads, "single");
+    std::vector<std::string> files;
+    for (const std::string name : {"dsm.tif", "ortho.tif"}) files.push_back(testing::ReadFileBytes(copy / name));
+    if (threads == 1) {
+      one_thread = files;
+    } else {
+      EXPECT_TRUE(files == one_thread) << "dsm.tif or ortho.tif differs between 1 and 4 threads";
+    }
+  }
 }
 
 TEST_F(DsmEndToEndTest, DsmCommandTakesTheLasCrsAndEvalScoresADsm) {

@@ -10,7 +10,8 @@
 # WORK is a scratch folder (blocks are simulated there once and reused). Environment: SACFUSE_BIN (default
 # build/bin/sacfuse), METHODS (default: all six), BLOCKS (default "tiny small"), TILE_M (tile size of the tiled
 # runs, default 20 m: several tiles on both blocks), CRS (the runs' `crs` key, default none; e.g. EPSG:25832
-# makes them write their DSM too, whose reading of the tiles must leave the clouds alone). Not a test of the default suite (it takes minutes); run it
+# makes them write their DSM and true ortho too, whose reading of the tiles must leave the clouds alone, and then
+# DIR/dsm.tif and DIR/ortho.tif are compared byte for byte as well). Not a test of the default suite (it takes minutes); run it
 # before each commit of a refactor.
 set -euo pipefail
 mode=${1:?usage: output_identity.sh record|check WORK BASELINE.txt}
@@ -74,6 +75,11 @@ EOF
         fi
         secs=$(python3 -c "import time; print(f'{time.time() - $start:.1f}')")
         echo "$name $(las_digest "$out/fused.las")" >>"$results"
+        for raster in dsm.tif ortho.tif; do  # with CRS: the raster products, byte for byte
+          if [ -f "$out/$raster" ]; then
+            echo "$name.$raster $(sha256sum <"$out/$raster" | cut -d' ' -f1) $(stat -c %s "$out/$raster")" >>"$results"
+          fi
+        done
         echo "$name: ${secs} s" >&2
       done
     done
