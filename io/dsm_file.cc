@@ -3,7 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <optional>
+
+#include <tbb/parallel_for.h>
 
 #include "core/cell_heights.h"
 #include "core/error.h"
@@ -88,10 +89,34 @@ DsmWriteStats WriteDsmFromRawFiles(const std::vector<std::string>& raw_files, co
                                    const CellWindow& extent, const DsmRule& rule, const RasterFormat& format,
                                    const RasterOutput& output) {
   if (raw_files.empty() && patch.empty()) throw Error("WriteDsmFromRawFiles: no raw cells");
-  std::optional<RasterFile> mosaic;
-  if (!raw_files.empty()) mosaic.emplace(RasterFile::Mosaic(raw_files));
+  // The files are read on the job's threads, each opened by the task that reads it (opening one parses its CRS):
+  // first their windows, then per block the files that meet it, placed in file order (later files win where they
+  // overlap, as in a mosaic of them; a tiled run's cores do not overlap).
+  std::vector<CellWindow> windows(raw_files.size());
+  tbb::parallel_for(size_t{0}, raw_files.size(), [&](size_t k) {
+    windows[k] = RasterFile(raw_files[k]).window();
+    windows[k].cell_m = extent.cell_m;
+  });
   const RawCellReader read = [&](const CellWindow& w) {
-    std::vector<float> v = mosaic ? mosaic->ReadFloat(w) : std::vector<float>(w.size(), kNoCellValue);
+    std::vector<float> v(w.size(), kNoCellValue);
+    std::vector<size_t> meeting;
+    for (size_t k = 0; k < raw_files.size(); ++k) {
+      if (!w.Intersection(windows[k]).empty()) meeting.push_back(k);
+    }
+    std::vector<std::vector<float>> parts(meeting.size());
+    tbb::parallel_for(size_t{0}, meeting.size(), [&](size_t m) {
+      parts[m] = RasterFile(raw_files[meeting[m]]).ReadFloat(w.Intersection(windows[meeting[m]]));
+    });
+    for (size_t m = 0; m < meeting.size(); ++m) {
+      const CellWindow common = w.Intersection(windows[meeting[m]]);
+      const int64_t x0 = common.XOffsetIn(w), y0 = common.YOffsetIn(w);
+      for (int64_t r = 0; r < common.rows; ++r) {
+        for (int64_t c = 0; c < common.cols; ++c) {
+          const float value = parts[m][static_cast<size_t>(r * common.cols + c)];
+          if (!std::isnan(value)) v[static_cast<size_t>((y0 + r) * w.cols + x0 + c)] = value;
+        }
+      }
+    }
     for (int64_t col = w.col0; col < w.col0 + w.cols; ++col) {
       for (auto it = patch.lower_bound({col, w.row0}); it != patch.end() && it->first.first == col &&
                                                        it->first.second < w.row0 + w.rows;

@@ -19,6 +19,9 @@
 #include "io/point_cloud_file.h"
 #include "io/raster_assembly.h"
 #include "io/resource_usage.h"
+#include "jobs/auto_tiling.h"
+#include "jobs/view_batches.h"
+#include "tiles/memory_model.h"
 #include "tiles/tile_manifest.h"
 #include "tiles/tile_marker.h"
 
@@ -145,6 +148,13 @@ OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, co
     RemoveQuietly(OrthoVrtPath(config));
     RemoveQuietly(OrthoBlocksDir(config));
   }
+  // Decoded images held at once: one per thread, within a quarter of the memory budget (at least one).
+  uint64_t largest_image_bytes = 1;
+  for (const View& v : input.views()) {
+    largest_image_bytes = std::max<uint64_t>(largest_image_bytes, uint64_t{3} * v.camera.width * v.camera.height);
+  }
+  const size_t images_in_flight = static_cast<size_t>(std::clamp<uint64_t>(
+      MemoryBudgetBytes(config.resources.memory_gb) / 4 / largest_image_bytes, 1, EffectiveThreads(config)));
   OrthoOutcome out;
   const BlockMaker make = [&](const CellWindow& block, uint64_t* cells_with_value) {
     const CellWindow outer = block.Grown(halo);
@@ -164,32 +174,31 @@ OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, co
         if (std::isfinite(patch.z[outer.Index(col, row)])) ++out.cells_unseen;
       }
     }
-    // The views on the job's threads, each decoding its image and colouring its own cells (one image per thread
-    // at a time); the views with the most cells first, so that no long one starts last.
+    // The views on the job's threads, each decoding its image and colouring its own cells; at most
+    // `images_in_flight` images decoded at once. The views with the most cells first, so that no long one starts
+    // last.
     std::vector<const std::pair<const int32_t, std::vector<size_t>>*> order;
     for (const auto& entry : cells_of_view) order.push_back(&entry);
     std::stable_sort(order.begin(), order.end(),
                      [](const auto* a, const auto* b) { return a->second.size() > b->second.size(); });
     std::atomic<uint64_t> coloured{0}, reads{0};
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, order.size(), 1), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t o = range.begin(); o < range.end(); ++o) {
-        const auto& [v, cells] = *order[o];
-        const View& view = input.views()[v];
-        const RgbImage image = input.ReadImage(view);
-        ++reads;
-        if (image.empty()) continue;  // an input without images: those cells stay transparent
-        const PinholeCamera camera = view.camera.Scaled(image.width, image.height);
-        for (const size_t i : cells) {
-          const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
-          const int64_t row = block.row0 + block.rows - 1 - static_cast<int64_t>(i / block.cols);
-          const std::array<uint8_t, 3> rgb = CellColour(image, camera, view.cam_from_world,
-                                                        CellPoint(col, row, cell, patch.z[outer.Index(col, row)]), cell);
-          for (int c = 0; c < 3; ++c) rgba[c * n + i] = rgb[c];
-          rgba[3 * n + i] = 255;
-        }
-        coloured += cells.size();
+    ForEachViewInFlight(order.size(), images_in_flight, [&](size_t o) {
+      const auto& [v, cells] = *order[o];
+      const View& view = input.views()[v];
+      const RgbImage image = input.ReadImage(view);
+      ++reads;
+      if (image.empty()) return;  // an input without images: those cells stay transparent
+      const PinholeCamera camera = view.camera.Scaled(image.width, image.height);
+      for (const size_t i : cells) {
+        const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
+        const int64_t row = block.row0 + block.rows - 1 - static_cast<int64_t>(i / block.cols);
+        const std::array<uint8_t, 3> rgb = CellColour(image, camera, view.cam_from_world,
+                                                      CellPoint(col, row, cell, patch.z[outer.Index(col, row)]), cell);
+        for (int c = 0; c < 3; ++c) rgba[c * n + i] = rgb[c];
+        rgba[3 * n + i] = 255;
       }
-    }, tbb::simple_partitioner());
+      coloured += cells.size();
+    });
     *cells_with_value += coloured.load();
     out.image_reads += reads.load();
     return rgba;

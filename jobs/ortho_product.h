@@ -9,8 +9,9 @@
 //     bilinearly at full resolution;
 //   - cells without a DSM height, or that no view sees, are transparent (alpha 0).
 // Bounded memory: the product is made block by block (io/raster_assembly.h's 2048 x 2048 blocks): per block the DSM
-// window plus the occlusion halo, 8 bytes a cell for the selected views, and per thread one cloud reader and one
-// decoded image at a time (each image a block needs is decoded once for that block). Each block's work runs on the
+// window plus the occlusion halo, 8 bytes a cell for the selected views, one cloud reader per thread, and up to one
+// decoded image per thread, as many as fit in a quarter of resources.memory_gb (at least one; each image a block
+// needs is decoded once for that block). Each block's work runs on the
 // job's threads: the clouds' points, the cells' views (by rows) and the colouring (by view); the result does not
 // depend on the thread count. The ortho depends only on the DSM product, the
 // points and the images, so a tiled run's ortho is that of its merged cloud and DSM, and a rerun writes the same
