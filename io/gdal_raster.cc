@@ -334,8 +334,6 @@ CellWindow LatticeWindow(GDALDataset& d, const std::string& path, bool lattice) 
 
 }  // namespace
 
-RasterFile::RasterFile(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
-
 RasterFile::RasterFile(const std::string& path, bool lattice) : impl_(std::make_unique<Impl>()) {
   InitGdal();
   impl_->path = path;
@@ -343,24 +341,6 @@ RasterFile::RasterFile(const std::string& path, bool lattice) : impl_(std::make_
   impl_->dataset.reset(GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY));
   if (!impl_->dataset) throw InputError(path, "GDAL cannot open it as a raster: " + LastGdalError());
   impl_->window = LatticeWindow(*impl_->dataset, path, lattice);
-}
-
-RasterFile RasterFile::Mosaic(const std::vector<std::string>& paths) {
-  InitGdal();
-  if (paths.empty()) throw Error("raster mosaic: no files");
-  std::vector<const char*> names;
-  for (const std::string& p : paths) names.push_back(p.c_str());
-  CPLErrorReset();
-  GDALBuildVRTOptions* options = GDALBuildVRTOptionsNew(nullptr, nullptr);
-  int usage_error = 0;
-  GDALDatasetH vrt = GDALBuildVRT("", static_cast<int>(names.size()), nullptr, names.data(), options, &usage_error);
-  GDALBuildVRTOptionsFree(options);
-  if (vrt == nullptr) throw Error("raster mosaic of " + paths.front() + " ...: " + LastGdalError());
-  auto impl = std::make_unique<Impl>();
-  impl->path = paths.front() + " (mosaic of " + std::to_string(paths.size()) + " files)";
-  impl->dataset.reset(GDALDataset::FromHandle(vrt));
-  impl->window = LatticeWindow(*impl->dataset, impl->path, true);
-  return RasterFile(std::move(impl));
 }
 
 RasterFile::~RasterFile() = default;

@@ -63,15 +63,12 @@ class CogBuilder {
   std::unique_ptr<Impl> impl_;
 };
 
-// A raster GDAL opens (GeoTIFF, VRT, ...), or an in-memory VRT mosaic of several files, read on the lattice.
+// A raster GDAL opens (GeoTIFF, VRT, ...), read on the lattice.
 class RasterFile {
  public:
   // Throws InputError naming the file when GDAL cannot open it, it is rotated, its cells are not square, or
   // (lattice = true) its origin is not on a multiple of its cell.
   explicit RasterFile(const std::string& path, bool lattice = true);
-  // A mosaic of `paths` (all of one cell size and band layout; later files win where they overlap); Error when
-  // `paths` is empty.
-  static RasterFile Mosaic(const std::vector<std::string>& paths);
   ~RasterFile();
   RasterFile(RasterFile&&) noexcept;
   RasterFile& operator=(RasterFile&&) noexcept;
@@ -92,7 +89,6 @@ class RasterFile {
 
  private:
   struct Impl;
-  explicit RasterFile(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
 };
 

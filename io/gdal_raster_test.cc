@@ -73,21 +73,6 @@ TEST(GdalRasterTest, IntermediateAndCogFilesReadBackWithTheirGeoreferenceNodataA
   EXPECT_EQ(TemporaryFiles(dir.path()), 0u);
 }
 
-TEST(GdalRasterTest, AMosaicReadsAcrossFilesAndLeavesUncoveredCellsWithoutValue) {
-  testing::TempDir dir;
-  const CellWindow a = Window(0, 0, 10, 10, 0.5), b = Window(10, 0, 10, 10, 0.5);
-  RasterFormat format;
-  format.nodata = kNan;
-  WriteRasterFile((dir / "a.tif").string(), a, format, Ramp(a).data(), RasterLayout::kIntermediate);
-  WriteRasterFile((dir / "b.tif").string(), b, format, Ramp(b).data(), RasterLayout::kIntermediate);
-  const RasterFile mosaic = RasterFile::Mosaic({(dir / "a.tif").string(), (dir / "b.tif").string()});
-  const CellWindow across = Window(8, -2, 5, 4, 0.5);  // two columns of a, three of b, two rows below both
-  const std::vector<float> v = mosaic.ReadFloat(across);
-  EXPECT_FLOAT_EQ(v[across.Index(9, 1)], 100.0f + 9 + 0.001f);
-  EXPECT_FLOAT_EQ(v[across.Index(10, 1)], 100.0f + 10 + 0.001f);
-  EXPECT_TRUE(std::isnan(v[across.Index(10, -1)]));
-}
-
 TEST(GdalRasterTest, AssemblyIntoOneCogOrBlocksWithAVrtGivesTheSameCells) {
   testing::TempDir dir;
   const CellWindow extent = Window(-100, 50, 2300, 70, 1.0);  // blocks [-2048, 0), [0, 2048), [2048, 4096)
