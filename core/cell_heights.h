@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/cell_window.h"
+#include "core/default_init_allocator.h"
 
 namespace sacfuse {
 
@@ -34,6 +35,9 @@ class CellHeights {
   // AddToCell of every point i in [0, count) that point_cell places, on the job's threads (point_cell is called
   // concurrently). The values Reduce gives do not depend on the order in which points were added.
   void AddInParallel(size_t count, const PointCell& point_cell);
+  // Room for `points` points in all (8 bytes each), so that adding them does not grow and copy the keys on one
+  // thread as they come.
+  void Reserve(uint64_t points) { keys_.reserve(static_cast<size_t>(points)); }
   uint64_t points() const { return keys_.size(); }
   uint64_t ignored() const { return ignored_; }
   const CellWindow& window() const { return window_; }
@@ -44,7 +48,9 @@ class CellHeights {
 
  private:
   CellWindow window_;
-  std::vector<uint64_t> keys_;  // (raster index << 32) | order-preserving bits of the float z
+  // (raster index << 32) | order-preserving bits of the float z; grown without a zero fill (AddInParallel writes
+  // every new key on the job's threads).
+  std::vector<uint64_t, DefaultInitAllocator<uint64_t>> keys_;
   uint64_t ignored_ = 0;
 };
 

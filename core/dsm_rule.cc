@@ -35,9 +35,11 @@ void FillHoles(std::vector<float>* v, int64_t c0, int64_t c1, int64_t r0, int64_
       while (!stack.empty()) {
         const auto [x, y] = stack.back();
         stack.pop_back();
-        component.push_back({x, y});
         xmin = std::min(xmin, x), xmax = std::max(xmax, x), ymin = std::min(ymin, y), ymax = std::max(ymax, y);
         if (x == c0 || x == c1 - 1 || y == r0 || y == r1 - 1) open = true;
+        // A hole that stays unfilled (open, or too large) is only labelled: its cells are not kept (the empty land
+        // around a cloud is one such hole of most of the block's cells).
+        if (!open && xmax - xmin < max_cells && ymax - ymin < max_cells) component.push_back({x, y});
         const int64_t nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
         for (int k = 0; k < 4; ++k) {
           if (nx[k] < c0 || nx[k] >= c1 || ny[k] < r0 || ny[k] >= r1) continue;

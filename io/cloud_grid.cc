@@ -38,8 +38,10 @@ CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const Cloud
   const auto kept = [&](uint8_t c) { return !options.keep || options.keep(c); };
   CloudChunk chunk;
   std::vector<CellWindow> bands;
+  std::vector<uint64_t> band_points;  // the points each band will hold (at most)
   if (cloud.point_count() <= options.max_points_in_memory) {
     bands.push_back(window);
+    band_points.push_back(cloud.point_count());
   } else {
     std::vector<uint64_t> per_row(static_cast<size_t>(window.rows), 0);
     cloud.Rewind();
@@ -53,9 +55,16 @@ CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const Cloud
       }
     }
     bands = RowBands(window, per_row, options.max_points_in_memory);
+    for (const CellWindow& band : bands) {
+      uint64_t n = 0;
+      for (int64_t r = band.row0; r < band.row0 + band.rows; ++r) n += per_row[static_cast<size_t>(r - window.row0)];
+      band_points.push_back(n);
+    }
   }
-  for (const CellWindow& band : bands) {
+  for (size_t b = 0; b < bands.size(); ++b) {
+    const CellWindow& band = bands[b];
     CellHeights heights(band);
+    heights.Reserve(band_points[b] + kCloudReadChunkPoints);  // a read's points are added before those outside go
     cloud.Rewind();
     ++out.passes;
     const bool count_outside = bands.size() == 1 || &band == &bands.front();

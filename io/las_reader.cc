@@ -261,18 +261,23 @@ size_t LasReader::Read(std::vector<LasPoint>* out, size_t max_count) {
   const size_t length = h.point_record_length;
   size_t done = 0;
   while (done < n) {
-    const size_t k = std::min(kReadBlockRecords, n - done);
-    r.block.resize(k * length);
+    size_t k = 0;
+    const uint8_t* records = nullptr;
     if (r.laz) {
-      r.laz->Read(r.block.data(), k);
-    } else if (std::fread(r.block.data(), length, k, r.file) != k) {
-      r.Fail("cannot read points " + std::to_string(r.next) + ".." + std::to_string(r.next + k) +
-             " (file changed while reading?)");
+      records = r.laz->Next(n - done, &k);  // decoded on the pool, read in place
+    } else {
+      k = std::min(kReadBlockRecords, n - done);
+      r.block.resize(k * length);
+      if (std::fread(r.block.data(), length, k, r.file) != k) {
+        r.Fail("cannot read points " + std::to_string(r.next) + ".." + std::to_string(r.next + k) +
+               " (file changed while reading?)");
+      }
+      records = r.block.data();
     }
     // Records are independent: decoded in parallel (a serial share of every reading of a large cloud otherwise).
     tbb::parallel_for(tbb::blocked_range<size_t>(0, k, 4096), [&](const tbb::blocked_range<size_t>& range) {
       for (size_t i = range.begin(); i < range.end(); ++i) {
-        lf::DecodePointRecord(&r.block[i * length], h.point_format, h.scale, h.offset, &(*out)[done + i]);
+        lf::DecodePointRecord(records + i * length, h.point_format, h.scale, h.offset, &(*out)[done + i]);
       }
     });
     done += k;

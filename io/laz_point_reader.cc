@@ -6,6 +6,7 @@
 #include <utility>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "core/error.h"
 #include "io/las_format.h"
@@ -30,7 +31,8 @@ LazPointReader::LazPointReader(const std::string& path, FILE* file, uint64_t fil
       file_size_(file_size),
       record_length_(header.point_record_length),
       point_count_(header.point_count),
-      point_data_offset_(header.offset_to_point_data) {
+      point_data_offset_(header.offset_to_point_data),
+      batch_chunks_(BatchChunks(static_cast<size_t>(tbb::this_task_arena::max_concurrency()))) {
   laz::LazVlr& vlr = vlr_;
   try {
     vlr = laz::LazVlr::Parse(laszip_vlr);
@@ -47,6 +49,10 @@ LazPointReader::LazPointReader(const std::string& path, FILE* file, uint64_t fil
 
 LazPointReader::~LazPointReader() {
   if (ahead_running_) ahead_task_->wait();  // the task catches its own exceptions
+}
+
+size_t LazPointReader::BatchChunks(size_t threads) {
+  return std::max(kMinBatchChunks, kBatchChunksPerThread * threads);
 }
 
 void LazPointReader::Fail(const std::string& message) const { throw InputError(path_, message); }
@@ -135,7 +141,8 @@ void LazPointReader::ReadChunkTable(uint32_t chunk_size) {
 void LazPointReader::DecodeBatch(size_t first, Batch* batch) {
   size_t last = first + 1;  // one past the batch's last chunk
   uint64_t points = chunks_[first].points;
-  while (last < chunks_.size() && last - first < kBatchChunks && points + chunks_[last].points <= kBatchPoints) {
+  const uint64_t batch_points = kChunkPoints * batch_chunks_;
+  while (last < chunks_.size() && last - first < batch_chunks_ && points + chunks_[last].points <= batch_points) {
     points += chunks_[last].points;
     ++last;
   }
@@ -221,19 +228,15 @@ void LazPointReader::NextBatch() {
   }
 }
 
-void LazPointReader::Read(uint8_t* records, size_t count) {
-  while (count > 0) {
-    if (pos_ == current_.valid) {
-      if (!current_.error.empty()) Fail(current_.error);
-      NextBatch();
-      continue;
-    }
-    const size_t k = std::min(count, current_.valid - pos_);
-    std::memcpy(records, current_.records.get() + pos_ * record_length_, k * record_length_);
-    records += k * record_length_;
-    pos_ += k;
-    count -= k;
+const uint8_t* LazPointReader::Next(size_t max, size_t* count) {
+  while (pos_ == current_.valid) {
+    if (!current_.error.empty()) Fail(current_.error);
+    NextBatch();
   }
+  *count = std::min(max, current_.valid - pos_);
+  const uint8_t* records = current_.records.get() + pos_ * record_length_;
+  pos_ += *count;
+  return records;
 }
 
 bool LazPointReader::ReadStoredChunk(std::vector<uint8_t>* bytes, uint64_t* points) {

@@ -1,10 +1,14 @@
 #pragma once
 // Streaming decoder of the point data of a LAZ file (LASzip compressed data format) for LasReader: reads the
-// chunk table, then batches of up to kBatchChunks consecutive chunks (at most kBatchPoints points, but always one
-// whole chunk), decoded in parallel (chunks are independent in LAZ: one decoder per chunk of the batch), yielding
-// uncompressed LAS point records in file order. While the reader hands out one batch, the next one is decoded in
+// chunk table, then batches of consecutive chunks, decoded in parallel (chunks are independent in LAZ: one decoder
+// per chunk of the batch), yielding uncompressed LAS point records in file order, handed out in place (Next: no
+// copy on the caller's thread). A batch holds two chunks per thread of the task arena the reader was made in, at
+// least kMinBatchChunks (at most that many times kChunkPoints points, but always one whole chunk), so that every
+// thread has chunks to decode on any core count. While the reader hands out one batch, the next one is decoded in
 // the background (read-ahead), so the caller's own work on the points overlaps the decoding instead of leaving the
-// other threads idle (issue 48). Memory is bounded by two batches. Supports point formats 0-3 point-wise chunked (items version 2) and 6-8 layered chunked (version 3),
+// other threads idle (issue 48). Memory is bounded by two batches: 2 x 2 x 50,000 records (~7 MB of 34-byte
+// records) and two chunk decoders (~1.5 MB of models each) per thread. Supports point formats 0-3 point-wise
+// chunked (items version 2) and 6-8 layered chunked (version 3),
 // with extra bytes, fixed or variable chunk sizes; anything else is refused with an InputError naming the file and
 // the compressor/item version. Corrupt or truncated data give an InputError naming the file and the chunk.
 // Private to io/.
@@ -34,10 +38,11 @@ class LazPointReader {
   LazPointReader(const std::string& path, FILE* file, uint64_t file_size, const LasHeader& header,
                  const std::vector<uint8_t>& laszip_vlr);
   ~LazPointReader();
-  // Decodes the next `count` records (count * record length bytes) into `records`. A corrupt chunk throws when the
-  // reading reaches its first undecodable record, as a one-chunk-at-a-time decoder would: the records before it
-  // are delivered first.
-  void Read(uint8_t* records, size_t count);
+  // The next decoded records, at least one and at most `max` (> 0; fewer where the current batch ends): *count of
+  // them, record after record, in the reader's own buffer, valid until the next call of a method of the reader.
+  // Throws past the last point. A corrupt chunk throws when the reading reaches its first undecodable record, as
+  // a one-chunk-at-a-time decoder would: the records before it are delivered first.
+  const uint8_t* Next(size_t max, size_t* count);
 
   // The next chunk as stored, undecoded, and its point count, when no decoded records are pending (the reading
   // stands at a chunk's start); false at the end or mid-chunk. Read continues after it.
@@ -46,8 +51,12 @@ class LazPointReader {
   // false, having moved nothing, where ReadStoredChunk would fail or when fewer chunks are left.
   bool SkipStoredChunks(uint64_t chunks, uint64_t* points);
 
-  static constexpr size_t kBatchChunks = 8;         // chunks decoded in parallel
-  static constexpr uint64_t kBatchPoints = 400000;  // points of a batch (8 chunks of the usual 50,000)
+  static constexpr size_t kMinBatchChunks = 8;       // chunks decoded in parallel on up to 4 threads
+  static constexpr size_t kBatchChunksPerThread = 2;  // above 4 threads: two chunks per thread
+  static constexpr uint64_t kChunkPoints = 50000;     // the usual chunk: a batch holds that many points per chunk
+  // Chunks of a batch for `threads` threads.
+  static size_t BatchChunks(size_t threads);
+  size_t batch_chunks() const { return batch_chunks_; }
   void Rewind();
   // Offset of the chunk table (EVLRs of LAS 1.4 LAZ files follow it).
   uint64_t chunk_table_offset() const { return table_offset_; }
@@ -85,6 +94,7 @@ class LazPointReader {
   uint64_t point_data_offset_;
   uint64_t table_offset_ = 0;
   uint64_t table_end_ = 0;
+  size_t batch_chunks_ = kMinBatchChunks;
   laz::LazVlr vlr_;
   // One per chunk of a batch, made when first needed; used by one batch's decoding at a time.
   std::vector<std::unique_ptr<laz::ChunkDecoder>> decoders_;

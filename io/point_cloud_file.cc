@@ -3,6 +3,9 @@
 #include <fstream>
 #include <optional>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include "core/error.h"
 #include "io/las_reader.h"
 #include "io/ply_reader.h"
@@ -81,14 +84,17 @@ size_t PointCloudFile::Read(CloudChunk* chunk, size_t max_points) {
     chunk->classification.resize(n);
     chunk->source_id.resize(n);
     chunk->rgb.resize(n);
-    for (size_t i = 0; i < n; ++i) {
-      const LasPoint& p = impl_->las_buffer[i];
-      chunk->xyz[i] = p.xyz + impl_->shift;
-      chunk->classification[i] = p.classification;
-      chunk->source_id[i] = p.point_source_id;
-      chunk->rgb[i] = {static_cast<uint8_t>(p.rgb[0] >> 8), static_cast<uint8_t>(p.rgb[1] >> 8),
-                       static_cast<uint8_t>(p.rgb[2] >> 8)};
-    }
+    // On the job's threads, as the records were decoded (one thread copying them would be a serial share).
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i < range.end(); ++i) {
+        const LasPoint& p = impl_->las_buffer[i];
+        chunk->xyz[i] = p.xyz + impl_->shift;
+        chunk->classification[i] = p.classification;
+        chunk->source_id[i] = p.point_source_id;
+        chunk->rgb[i] = {static_cast<uint8_t>(p.rgb[0] >> 8), static_cast<uint8_t>(p.rgb[1] >> 8),
+                         static_cast<uint8_t>(p.rgb[2] >> 8)};
+      }
+    });
     return n;
   }
   const size_t n = impl_->ply->Read(&impl_->ply_buffer, max_points);
