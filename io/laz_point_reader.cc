@@ -5,6 +5,7 @@
 #include <cstring>
 #include <utility>
 
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
@@ -12,6 +13,7 @@
 #include "io/las_format.h"
 #include "io/laz_arithmetic.h"
 #include "io/laz_chunk_codec.h"
+#include "io/laz_chunk_writer.h"
 #include "io/laz_chunk_table.h"
 #include "io/laz_vlr.h"
 
@@ -32,7 +34,9 @@ LazPointReader::LazPointReader(const std::string& path, FILE* file, uint64_t fil
       record_length_(header.point_record_length),
       point_count_(header.point_count),
       point_data_offset_(header.offset_to_point_data),
-      batch_chunks_(BatchChunks(static_cast<size_t>(tbb::this_task_arena::max_concurrency()))) {
+      batch_chunks_(BatchChunks(std::min<size_t>(
+          static_cast<size_t>(tbb::this_task_arena::max_concurrency()),
+          tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)))) {
   laz::LazVlr& vlr = vlr_;
   try {
     vlr = laz::LazVlr::Parse(laszip_vlr);
@@ -141,7 +145,7 @@ void LazPointReader::ReadChunkTable(uint32_t chunk_size) {
 void LazPointReader::DecodeBatch(size_t first, Batch* batch) {
   size_t last = first + 1;  // one past the batch's last chunk
   uint64_t points = chunks_[first].points;
-  const uint64_t batch_points = kChunkPoints * batch_chunks_;
+  const uint64_t batch_points = uint64_t{LazChunkWriter::kChunkPoints} * batch_chunks_;  // the usual chunk's
   while (last < chunks_.size() && last - first < batch_chunks_ && points + chunks_[last].points <= batch_points) {
     points += chunks_[last].points;
     ++last;

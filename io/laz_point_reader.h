@@ -53,8 +53,8 @@ class LazPointReader {
 
   static constexpr size_t kMinBatchChunks = 8;       // chunks decoded in parallel on up to 4 threads
   static constexpr size_t kBatchChunksPerThread = 2;  // above 4 threads: two chunks per thread
-  static constexpr uint64_t kChunkPoints = 50000;     // the usual chunk: a batch holds that many points per chunk
-  // Chunks of a batch for `threads` threads.
+  // Chunks of a batch for `threads` threads. The reader takes the threads TBB may use where it is made (the task
+  // arena's, within tbb::global_control's limit).
   static size_t BatchChunks(size_t threads);
   size_t batch_chunks() const { return batch_chunks_; }
   void Rewind();

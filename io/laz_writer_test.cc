@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 
 #include "core/error.h"
 #include "io/las_format.h"
@@ -17,6 +18,7 @@
 #include "io/las_writer.h"
 #include "io/laz_chunk_table.h"
 #include "io/laz_chunk_writer.h"
+#include "io/laz_point_reader.h"
 #include "tests/support/las_points.h"
 #include "tests/support/test_support.h"
 
@@ -245,6 +247,87 @@ TEST(LazWriterTest, ParallelDecodingDeliversEveryPointBeforeACorruptChunk) {
       }
       ASSERT_EQ(got.size(), bad * 50000);
       ExpectSamePoints(got, std::vector<LasPoint>(twin.begin(), twin.begin() + static_cast<std::ptrdiff_t>(got.size())));
+    }
+  }
+}
+
+// A batch of the reader holds two chunks per thread, at least 8. A file of 13 chunks, more than a batch holds on
+// 1, 2 and 6 threads (8, 8 and 12 chunks), reads as the same points as its LAS twin on each, whether a Read takes
+// fewer points than a chunk or more than a batch (the records are converted where the decoder put them, a batch's
+// end falling inside a Read).
+TEST(LazWriterTest, ReadingGivesTheSamePointsOnAnyThreadCount) {
+  EXPECT_EQ(LazPointReader::BatchChunks(1), 8u);
+  EXPECT_EQ(LazPointReader::BatchChunks(2), 8u);
+  EXPECT_EQ(LazPointReader::BatchChunks(8), 16u);
+  EXPECT_EQ(LazPointReader::BatchChunks(64), 128u);
+  TempDir dir;
+  const size_t n = 12 * 50000 + 13;
+  const std::vector<LasPoint> pts = MakePoints(6, n, 6);
+  Write(dir / "many.laz", 4, 6, pts, true);
+  Write(dir / "twin.las", 4, 6, pts, false);
+  const std::vector<LasPoint> twin = ReadAllLasPoints((dir / "twin.las").string());
+  ASSERT_EQ(twin.size(), n);
+  struct Case {
+    int threads;
+    size_t step;  // points per Read
+  };
+  for (const Case c : {Case{1, 1000}, Case{2, 700001}, Case{6, 700001}}) {
+    SCOPED_TRACE(::testing::Message() << c.threads << " threads, reads of " << c.step);
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, c.threads);
+    tbb::task_arena arena(c.threads);
+    std::vector<LasPoint> got, block;
+    arena.execute([&] {
+      LasReader reader((dir / "many.laz").string());
+      while (reader.Read(&block, c.step) > 0) got.insert(got.end(), block.begin(), block.end());
+    });
+    ASSERT_EQ(got.size(), n);
+    ExpectSamePoints(got, twin);
+  }
+}
+
+// A LAZ file whose chunk 10 of 12 was cut to its first 40 bytes, chunk 11 and the chunk table following it: with
+// the table unchanged, the chunks listed run into the table (an error when the file is opened); with the table
+// saying 40 bytes, the reading delivers every point of chunks 0-9 and then fails in chunk 10. Either way an
+// InputError naming the file (and the chunk), on 1 and 2 threads.
+TEST(LazWriterTest, ACutChunkGivesAnErrorNamingTheFileAndTheChunk) {
+  TempDir dir;
+  const size_t n = 11 * 50000 + 5;  // 12 chunks: two batches
+  Write(dir / "good.laz", 4, 6, MakePoints(6, n, 8), true);
+  const std::vector<uint8_t> good = ReadBytes(dir / "good.laz");
+  const size_t point_offset = lf::GetU32(&good[lf::kOffPointOffset]);
+  const uint64_t table = lf::GetU64(&good[point_offset]);
+  std::vector<laz::ChunkEntry> entries = laz::DecodeChunkTable(&good[table + 8], good.size() - table - 8, 12, false);
+  ASSERT_EQ(entries.size(), 12u);
+  size_t start = point_offset + 8;  // chunk 10's
+  for (size_t i = 0; i < 10; ++i) start += entries[i].bytes;
+  std::vector<uint8_t> cut(good.begin(), good.begin() + static_cast<std::ptrdiff_t>(start + 40));
+  cut.insert(cut.end(), good.begin() + static_cast<std::ptrdiff_t>(start + entries[10].bytes),
+             good.begin() + static_cast<std::ptrdiff_t>(table));
+  lf::PutU64(&cut[point_offset], cut.size());
+  const size_t table_at = cut.size();
+  for (const bool table_says_cut : {false, true}) {
+    cut.resize(table_at);
+    if (table_says_cut) entries[10].bytes = 40;
+    const std::vector<uint8_t> coded = laz::EncodeChunkTable(entries, false);  // with its version and count
+    cut.insert(cut.end(), coded.begin(), coded.end());
+    const std::string path = (dir / "cut.laz").string();
+    WriteBytes(path, cut);
+    for (const int threads : {1, 2}) {
+      SCOPED_TRACE(::testing::Message() << threads << " threads, table says cut: " << table_says_cut);
+      tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+      size_t read = 0;
+      try {
+        LasReader reader(path);
+        std::vector<LasPoint> block;
+        while (size_t k = reader.Read(&block, 50000)) read += k;  // a chunk per Read: the last one fails whole
+        ADD_FAILURE() << "the cut chunk was read";
+      } catch (const InputError& e) {
+        const std::string what = e.what();
+        EXPECT_NE(what.find(path), std::string::npos) << what;
+        EXPECT_NE(what.find(table_says_cut ? "LAZ chunk 10 of 12" : "runs into the chunk table"), std::string::npos)
+            << what;
+      }
+      EXPECT_EQ(read, table_says_cut ? 10 * 50000 : 0);
     }
   }
 }
