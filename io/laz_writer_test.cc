@@ -95,6 +95,14 @@ void Write(const fs::path& path, int minor, int pdrf, const std::vector<LasPoint
   w.Close();
 }
 
+// `n` points of PDRF 6 (LAS 1.4) written as LAZ to `laz` and as LAS to DIR/twin.las beside it: the twin's points.
+std::vector<LasPoint> WriteLazAndTwin(const fs::path& laz, size_t n, uint32_t seed) {
+  const std::vector<LasPoint> pts = MakePoints(6, n, seed);
+  Write(laz, 4, 6, pts, true);
+  Write(laz.parent_path() / "twin.las", 4, 6, pts, false);
+  return ReadAllLasPoints((laz.parent_path() / "twin.las").string());
+}
+
 struct Layout {
   int minor;
   int pdrf;
@@ -208,17 +216,13 @@ TEST(LazWriterTest, ParallelBatchesGiveTheSameFileForAnyThreadCount) {
   ExpectSamePoints(ReadAllLasPoints((dir / "two.laz").string()), ReadAllLasPoints((dir / "twin.las").string()));
 }
 
-// The reader decodes batches of chunks in parallel (LazPointReader::kBatchChunks) but behaves as a one-chunk-at-a-time
+// The reader decodes batches of chunks in parallel (LazPointReader::BatchChunks) but behaves as a one-chunk-at-a-time
 // decoder: on 1 and 2 threads, a file of 10 chunks (two batches) whose chunk k says it holds a wrong number of
 // points delivers exactly the 50,000 * k points before it, equal to those of the LAS twin, then an InputError naming
 // chunk k; a chunk in the middle of the first batch and the first chunk of the second.
 TEST(LazWriterTest, ParallelDecodingDeliversEveryPointBeforeACorruptChunk) {
   TempDir dir;
-  const size_t n = 9 * 50000 + 7;
-  const std::vector<LasPoint> pts = MakePoints(6, n, 5);
-  Write(dir / "good.laz", 4, 6, pts, true);
-  Write(dir / "twin.las", 4, 6, pts, false);
-  const std::vector<LasPoint> twin = ReadAllLasPoints((dir / "twin.las").string());
+  const std::vector<LasPoint> twin = WriteLazAndTwin(dir / "good.laz", 9 * 50000 + 7, 5);
   const std::vector<uint8_t> good = ReadBytes(dir / "good.laz");
   const size_t point_offset = lf::GetU32(&good[lf::kOffPointOffset]);
   const size_t record_length = lf::GetU16(&good[lf::kOffRecordLength]);
@@ -262,10 +266,7 @@ TEST(LazWriterTest, ReadingGivesTheSamePointsOnAnyThreadCount) {
   EXPECT_EQ(LazPointReader::BatchChunks(64), 128u);
   TempDir dir;
   const size_t n = 12 * 50000 + 13;
-  const std::vector<LasPoint> pts = MakePoints(6, n, 6);
-  Write(dir / "many.laz", 4, 6, pts, true);
-  Write(dir / "twin.las", 4, 6, pts, false);
-  const std::vector<LasPoint> twin = ReadAllLasPoints((dir / "twin.las").string());
+  const std::vector<LasPoint> twin = WriteLazAndTwin(dir / "many.laz", n, 6);
   ASSERT_EQ(twin.size(), n);
   struct Case {
     int threads;
