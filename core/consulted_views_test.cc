@@ -65,6 +65,9 @@ TEST(ConsultedViewsTest, EachRegionConsultsTheViewThatSeesIt) {
   const ConsultedViews consulted = ConsultedViews::Select(views, GroundNodes(0, 20), OneViewPerRegion(10.0));
   EXPECT_EQ(consulted.At(0, Ground(3, 5)), (std::vector<uint32_t>{1}));
   EXPECT_EQ(consulted.At(0, Ground(17, 5)), (std::vector<uint32_t>{2}));
+  // A region holds its western and southern edges (floor of the coordinate over the region size).
+  EXPECT_EQ(consulted.At(0, Ground(10.0, 5)), (std::vector<uint32_t>{2}));
+  EXPECT_EQ(consulted.At(0, Ground(9.99, 5)), (std::vector<uint32_t>{1}));
   // Beyond the view's regions: the nearest region's list.
   EXPECT_EQ(consulted.At(0, Ground(45, -30)), (std::vector<uint32_t>{2}));
   EXPECT_EQ(consulted.At(0, Ground(-45, 30)), (std::vector<uint32_t>{1}));
