@@ -182,6 +182,10 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
   s.AddInt("fusion.weak_support_rim_px", &f.weak_support_rim_px, Affects("px", Closed(0, kDepthEdgeReachPx), kSac),
            "weak support: a pixel this close to a hole of its own depth map needs weak_support_min_views agreeing "
            "views even where fewer could see it (0 = off; no effect while weak_support_min_views is 0)");
+  s.AddBool("fusion.independent_support", &f.independent_support, Affects("-", {}, kSac),
+            "outliers: where the input names each view's stereo partners (patch-match.cfg), the agreeing views that "
+            "are not partners of a point's view must be at least as many as those that could see it but have no depth "
+            "there (false = off)");
   s.AddDouble("fusion.correspondence_tolerance_sigmas", &f.correspondence_tolerance_sigmas,
               Affects("sigma", AtLeast(0), kSac),
               "reprojection correspondences: also agree within this many sigmas of estimated noise (0 = off)");

@@ -14,11 +14,15 @@ class Error : public std::runtime_error {
 // Bad or unreadable input data (corrupt, truncated or mismatched files).
 class InputError : public Error {
  public:
-  InputError(const std::string& file, const std::string& message) : Error(file + ": " + message), file_(file) {}
+  InputError(const std::string& file, const std::string& message)
+      : Error(file + ": " + message), file_(file), message_(message) {}
   const std::string& file() const { return file_; }
+  // What is wrong, without the file (for a caller that adds context and throws again, or warns).
+  const std::string& message() const { return message_; }
 
  private:
   std::string file_;
+  std::string message_;
 };
 
 // Invalid configuration or command-line option.

@@ -90,6 +90,26 @@ bool PassesOutlierTest(const std::vector<SacView>& views, uint32_t v, double d, 
   return agree >= required;
 }
 
+// Independent support (options.independent_support; see the header): among the neighbours that are not matching
+// partners of the point's view (bit k of `partner_slots` set = neighbors[k] is one), those whose depth agrees with
+// X must be at least as many as those that could see X but have no depth there (unmatched, UnmatchedAt).
+bool PassesIndependentSupport(const std::vector<SacView>& views, const std::vector<uint32_t>& neighbors,
+                              const DepthLookup* hits, uint64_t partner_slots, const SacOptions& options) {
+  int agree = 0, unmatched = 0;
+  for (size_t k = 0; k < neighbors.size(); ++k) {
+    const DepthLookup& hit = hits[k];
+    if (!hit.inside || ((partner_slots >> k) & 1) != 0) continue;
+    const SacView& b = views[neighbors[k]];
+    const double tolerance = DepthToleranceM(b, hit.z_m, options);
+    if (!IsValidDepth(hit.stored_depth_m)) {
+      if (UnmatchedAt(b, hit, tolerance)) ++unmatched;
+    } else if (std::abs(hit.stored_depth_m - hit.z_m) <= tolerance) {
+      ++agree;
+    }
+  }
+  return agree >= unmatched;
+}
+
 // Whether at least options.free_space_min_views of `judges` see through X (see the header). `neighbor_slot[b]`: the
 // index of view b in the neighbour list whose lookups `neighbor_hits` holds, or -1 (those are not looked up again).
 // The other judges are read through `ceilings` first (DepthCeiling): a view whose deepest valid depth around X's
@@ -163,6 +183,15 @@ PointVerdicts::PointVerdicts(const std::vector<SacView>& views, std::vector<std:
                                   std::to_string(kMaxJudgingViews) + " are supported");
     }
     for (size_t k = 0; k < neighbors_[v].size(); ++k) neighbor_slot_[v][neighbors_[v][k]] = static_cast<int>(k);
+    // Which neighbours are matching partners of v (independent support), as a bit per neighbour slot.
+    const std::vector<uint32_t>& partners = views[v].view.matching_partners;
+    uint64_t slots = 0;
+    for (size_t k = 0; k < neighbors_[v].size(); ++k) {
+      if (std::binary_search(partners.begin(), partners.end(), views[neighbors_[v][k]].view.index)) {
+        slots |= uint64_t{1} << k;
+      }
+    }
+    partner_slots_.push_back(slots);
     // Value-initialised: every pixel starts "not judged" (0). Two pixels per byte.
     memo_[v].reset(new std::atomic<uint8_t>[(views[v].depth->num_pixels() + 1) / 2]());
   }
@@ -216,6 +245,10 @@ PointVerdict PointVerdicts::Judge(uint32_t v, int row, int col) const {
   }
   if (!PassesOutlierTest(views_, v, d, near, hits.data(), noise_factor_, options_,
                          OnMatchedRim(view, row, col, options_))) {
+    return PointVerdict::kOutlier;
+  }
+  if (options_.independent_support && !view.view.matching_partners.empty() &&
+      !PassesIndependentSupport(views_, near, hits.data(), partner_slots_[v], options_)) {
     return PointVerdict::kOutlier;
   }
   if (options_.free_space_min_views > 0 &&

@@ -20,6 +20,12 @@
 //    own depth map, on the rim of what the matcher matched, needs weak_support_min_views maps (at most
 //    min_consistent_views) however few views observe it and whatever the noise cap allows: at the rim a matcher's
 //    depths stray most, confirmed by the partner that shares the match (Brighton Beach raw maps, docs/design.md).
+//    Independent support (independent_support, off by default; only for views whose matching partners the input
+//    names, View::matching_partners): among the neighbours that are not matching partners of the point's view, those
+//    that agree with X must be at least as many as those that could see X but have no depth there (unmatched, as
+//    above). A partner's depth comes from the same image pair as the point's own and shares its matching errors, so
+//    only other views' depths are independent evidence; where more independent views found nothing at X than
+//    confirm it, the match is doubted (Brighton Beach raw maps, docs/design.md).
 //  * Free space (visibility, Merrell et al., ICCV 2007): X is dropped when at least free_space_min_views of the
 //    judging views (the combine views, up to 40) see through it: their depth at X's projection lies beyond X by more
 //    than the tolerance and more than free_space_sigmas sigma of the two depths' difference, so X floats in space
@@ -87,6 +93,7 @@ class PointVerdicts {
   ConsultedViews judges_;
   std::vector<std::vector<int>> neighbor_slot_;  // [v][b]: index of b in neighbors_[v], or -1
   std::vector<double> noise_factor_;
+  std::vector<uint64_t> partner_slots_;  // [v]: bit k set when neighbors_[v][k] is a matching partner of v
   std::vector<DepthCeiling> ceilings_;  // per view (empty rasters when the free-space test is off)
   SacOptions options_;
   // Per view, row-major, two pixels per byte (the even pixel in the low 4 bits): 0 = not judged yet, else

@@ -458,5 +458,41 @@ TEST_F(WeakSupportTest, ABlunderOnTheRimOfItsOwnMatchedRegionNeedsTheWeakSupport
   EXPECT_EQ(VerdictAt(block, off, kEdgeRow, kEdgeCol), PointVerdict::kPasses);
 }
 
+
+// Independent support: the same blunder patch, made by the stereo pair of views 0 and 1 (matching partners: each
+// confirms the other's error), where views 2 and 3, matched in other pairs, found nothing. With the partners known,
+// no independent view confirms the patch and two could see it but have no depth: it is removed. Where view 2 also
+// put the patch there (an independent match agreeing), one confirms it against one unmatched and it passes; where
+// every view is a partner of view 0, or the partners are unknown, the rule does not act.
+TEST_F(WeakSupportTest, IndependentSupportDoubtsWhatOnlyTheStereoPartnerConfirms) {
+  SyntheticBlock block = Block();
+  const std::vector<std::vector<uint32_t>> pairs = {{1}, {0}, {3}, {2}};  // pairs (0, 1) and (2, 3)
+  for (size_t i = 0; i < 4; ++i) block.views[i].matching_partners = pairs[i];
+  SacOptions options;
+  ASSERT_FALSE(options.independent_support);  // off by default
+  EXPECT_EQ(VerdictAt(block, options, kSpikeRow, kSpikeCol), PointVerdict::kPasses);  // view 1 agrees: 2 of 2
+  options.independent_support = true;
+  EXPECT_EQ(VerdictAt(block, options, kSpikeRow, kSpikeCol), PointVerdict::kOutlier);  // 0 independent, 2 unmatched
+  // The plane west of the patch, confirmed by views 1 and 3 (3 independent of view 0), passes.
+  EXPECT_EQ(VerdictAt(block, options, 45, 40), PointVerdict::kPasses);
+
+  SyntheticBlock unknown = block;  // the input does not name the partners
+  for (View& view : unknown.views) view.matching_partners.clear();
+  EXPECT_EQ(VerdictAt(unknown, options, kSpikeRow, kSpikeCol), PointVerdict::kPasses);
+
+  SyntheticBlock all_partners = block;  // view 0 was matched with every other view: none is independent of it
+  all_partners.views[0].matching_partners = {1, 2, 3};
+  EXPECT_EQ(VerdictAt(all_partners, options, kSpikeRow, kSpikeCol), PointVerdict::kPasses);
+
+  {  // View 2 matched the patch too: 1 independent confirmation against 1 unmatched view (3).
+    const std::vector<SacView> views = block.SacViews();
+    const Eigen::Vector3d spike = PixelPoint(views[0], kSpikeRow, kSpikeCol, block.depths[0].at(kSpikeRow, kSpikeCol));
+    const DepthLookup in2 = ProjectIntoDepth(views[2], views[2].PointInCamera(spike));
+    ASSERT_TRUE(in2.inside);
+    block.depths[2].at(in2.row, in2.col) = static_cast<float>(in2.z_m);
+  }
+  EXPECT_EQ(VerdictAt(block, options, kSpikeRow, kSpikeCol), PointVerdict::kPasses);
+}
+
 }  // namespace
 }  // namespace sacfuse

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "io/atomic_file.h"
 #include "io/colmap_array.h"
+#include "io/colmap_patch_match_config.h"
 #include "io/input_file.h"
 #include "io/input_warnings.h"
 #include "io/rgb_image_file.h"
@@ -114,10 +115,7 @@ Raster<float> ReadDenseForView(const std::string& path, const View& view, int ch
   try {
     raster = ReadColmapArray(path);
   } catch (const InputError& e) {
-    std::string message = e.what();
-    const std::string prefix = e.file() + ": ";
-    if (message.compare(0, prefix.size(), prefix) == 0) message.erase(0, prefix.size());
-    throw InputError(e.file(), message + for_image);
+    throw InputError(e.file(), e.message() + for_image);
   }
   if (raster.channels != channels) {
     throw InputError(path, std::to_string(raster.channels) + " channels, expected " + std::to_string(channels) +
@@ -192,6 +190,23 @@ ColmapWorkspace::ColmapWorkspace(const std::string& dir, ColmapDepthType depth_t
     listed[j].index = static_cast<uint32_t>(views_.size());
     views_.push_back(std::move(listed[j]));
   }
+  ReadMatchingPartners();
+}
+
+void ColmapWorkspace::ReadMatchingPartners() {
+  const std::string path = JoinPath(dir_, "stereo/patch-match.cfg");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return;
+  std::vector<std::vector<uint32_t>> partners;
+  try {
+    partners = MatchingPartners(ReadPatchMatchConfig(path), views_);
+  } catch (const InputError& e) {
+    // The depth maps are still good: fuse them without knowing the pairs.
+    WarnAboutInput(path, e.message() +
+                             "; the views' matching partners are unknown (fusion.independent_support has no effect)");
+    return;
+  }
+  for (size_t i = 0; i < views_.size(); ++i) views_[i].matching_partners = std::move(partners[i]);
 }
 
 std::vector<size_t> ColmapWorkspace::WithDepthMaps(const std::vector<size_t>& order) const {
@@ -326,16 +341,26 @@ RgbImage ColmapWorkspace::ReadImage(const View& view) const {
   return ReadRgbImageFile(ImagePath(view), "image " + Quoted(view.name), view.camera.width, view.camera.height);
 }
 
-void WriteColmapStereoConfigs(const std::string& workspace_dir, const std::vector<std::string>& image_names) {
+void WriteColmapStereoConfigs(const std::string& workspace_dir, const std::vector<std::string>& image_names,
+                              const std::vector<std::vector<std::string>>& sources) {
   const std::string fusion_path = JoinPath(workspace_dir, "stereo/fusion.cfg");
+  if (!sources.empty() && sources.size() != image_names.size()) {
+    throw Error(fusion_path + ": " + std::to_string(sources.size()) + " source lists for " +
+                std::to_string(image_names.size()) + " images");
+  }
   std::string fusion;
   std::string patch_match;
-  for (const std::string& name : image_names) {
-    if (name.empty() || name.find_first_of("\r\n") != std::string::npos) {
+  for (size_t i = 0; i < image_names.size(); ++i) {
+    const std::string& name = image_names[i];
+    if (name.empty() || name.find_first_of("\r\n,") != std::string::npos) {
       throw Error(fusion_path + ": image name " + Quoted(name) + " cannot be written to a line-based config");
     }
     fusion += name + "\n";
-    patch_match += name + "\n__auto__, 20\n";
+    std::string line;
+    for (const std::string& source : sources.empty() ? std::vector<std::string>{} : sources[i]) {
+      line += (line.empty() ? "" : ", ") + source;
+    }
+    patch_match += name + "\n" + (line.empty() ? "__auto__, 20" : line) + "\n";
   }
   WriteFileAtomically(fusion_path, fusion);
   WriteFileAtomically(JoinPath(workspace_dir, "stereo/patch-match.cfg"), patch_match);

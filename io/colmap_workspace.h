@@ -2,7 +2,8 @@
 // A COLMAP dense workspace as image_undistorter + patch_match_stereo leave it:
 //   images/<name>, sparse/{cameras,images,points3D}.{bin|txt},
 //   stereo/depth_maps/<name>.{geometric|photometric}.bin, stereo/normal_maps/<name>.<type>.bin,
-//   stereo/fusion.cfg (one image name per line; when present, only those images are used, in that order).
+//   stereo/fusion.cfg (one image name per line; when present, only those images are used, in that order),
+//   stereo/patch-match.cfg (optional: each view's matching partners when it names them; io/colmap_patch_match_config.h).
 // <name> may contain sub-folders.
 #include <mutex>
 #include <string>
@@ -56,6 +57,9 @@ class ColmapWorkspace : public DepthBlock {
  private:
   // The model indices of `order` whose depth map exists (see the constructor).
   std::vector<size_t> WithDepthMaps(const std::vector<size_t>& order) const;
+  // Sets the views' matching_partners from stereo/patch-match.cfg when it names sources; a malformed file is a
+  // warning naming its line (the partners stay unknown).
+  void ReadMatchingPartners();
 
   std::string dir_;
   ColmapDepthType depth_type_;
@@ -66,7 +70,10 @@ class ColmapWorkspace : public DepthBlock {
   mutable std::vector<double> sampled_heights_;
 };
 
-// Writes stereo/fusion.cfg and stereo/patch-match.cfg for the given image names.
-void WriteColmapStereoConfigs(const std::string& workspace_dir, const std::vector<std::string>& image_names);
+// Writes stereo/fusion.cfg and stereo/patch-match.cfg for the given image names. `sources` (empty, or one list per
+// image): the images each was matched with, named in patch-match.cfg; an image without (or all, when `sources` is
+// empty) gets COLMAP's "__auto__, 20". Throws Error on a name that cannot be written (empty, a line break, a comma).
+void WriteColmapStereoConfigs(const std::string& workspace_dir, const std::vector<std::string>& image_names,
+                              const std::vector<std::vector<std::string>>& sources = {});
 
 }  // namespace sacfuse

@@ -373,6 +373,32 @@ TEST(ColmapWorkspaceTest, FusionCfgNameNotInModel) {
                    {"fusion.cfg", "line 2", "twice"});
 }
 
+TEST(ColmapWorkspaceTest, MatchingPartnersFromPatchMatchCfg) {
+  TempDir tmp;
+  BuildWorkspace(tmp.path());  // fuses oblique/img2.png (view 0) and nadir/img0.png (view 1)
+  const auto partners = [&] {
+    const ColmapWorkspace ws(tmp.path().string(), ColmapDepthType::kGeometric);
+    return std::vector<std::vector<uint32_t>>{ws.views()[0].matching_partners, ws.views()[1].matching_partners};
+  };
+  using Lists = std::vector<std::vector<uint32_t>>;
+  // Absent: unknown.
+  EXPECT_EQ(partners(), (Lists{{}, {}}));
+  // Named sources (img1 is not fused): img0 lists img2, so both are partners.
+  WriteFile(tmp / "stereo/patch-match.cfg", "nadir/img0.png\noblique/img2.png, nadir/img1.png\n");
+  EXPECT_EQ(partners(), (Lists{{1}, {0}}));
+  // COLMAP's own "__auto__, 20": unknown.
+  WriteColmapStereoConfigs(tmp.path().string(), {"oblique/img2.png", "nadir/img0.png"});
+  EXPECT_EQ(partners(), (Lists{{}, {}}));
+  // Malformed: the views are still fused, without partners, and a warning names the file and line.
+  WriteFile(tmp / "stereo/patch-match.cfg", "nadir/img0.png\noblique/img2.png\nnadir/img1.png\n");
+  sacfuse::testing::LogCapture log;
+  EXPECT_EQ(partners(), (Lists{{}, {}}));
+  EXPECT_NE(log.text().find("patch-match.cfg: line 3: image \"nadir/img1.png\" has no sources line"),
+            std::string::npos)
+      << log.text();
+  EXPECT_NE(log.text().find("matching partners are unknown"), std::string::npos);
+}
+
 TEST(ColmapWorkspaceTest, MissingSparseModel) {
   TempDir tmp;
   BuildWorkspace(tmp.path());
@@ -387,6 +413,11 @@ TEST(ColmapWorkspaceTest, WritesStereoConfigs) {
   EXPECT_EQ(ReadFile(tmp / "stereo/fusion.cfg"), "a/x.jpg\nb.jpg\n");
   EXPECT_EQ(ReadFile(tmp / "stereo/patch-match.cfg"), "a/x.jpg\n__auto__, 20\nb.jpg\n__auto__, 20\n");
   EXPECT_THROW(WriteColmapStereoConfigs(tmp.path().string(), {"bad\nname"}), Error);
+  EXPECT_THROW(WriteColmapStereoConfigs(tmp.path().string(), {"bad,name"}), Error);
+  // Named sources (a view without any gets COLMAP's automatic choice); they read back as written.
+  WriteColmapStereoConfigs(tmp.path().string(), {"a/x.jpg", "b.jpg", "c.jpg"}, {{"b.jpg", "c.jpg"}, {"a/x.jpg"}, {}});
+  EXPECT_EQ(ReadFile(tmp / "stereo/patch-match.cfg"), "a/x.jpg\nb.jpg, c.jpg\nb.jpg\na/x.jpg\nc.jpg\n__auto__, 20\n");
+  EXPECT_THROW(WriteColmapStereoConfigs(tmp.path().string(), {"a/x.jpg"}, {{}, {}}), Error);
 }
 
 }  // namespace

@@ -38,10 +38,7 @@ auto ForView(const View& view, F&& read) -> decltype(read()) {
   try {
     return read();
   } catch (const InputError& e) {
-    std::string message = e.what();
-    const std::string prefix = e.file() + ": ";
-    if (message.compare(0, prefix.size(), prefix) == 0) message.erase(0, prefix.size());
-    throw InputError(e.file(), message + " (depth raster of image " + Quoted(view.name) + ")");
+    throw InputError(e.file(), e.message() + " (depth raster of image " + Quoted(view.name) + ")");
   }
 }
 

@@ -321,6 +321,10 @@ SimSummary SimulateScene(const SimOptions& o, const SceneSpec& scene, const std:
     io.progress = [&](size_t done, size_t total) { report("sgbm", done, total); };
     const SgbmPassSummary pass = RunSgbmPass(main_ws.model, o.sgbm, io);
     summary.depth_pixels = pass.valid_pixels;
+    // patch-match.cfg names each view's partners, as a pipeline of stereo pairs does (fusion's independent support).
+    std::vector<std::vector<std::string>> sources;
+    for (const SgbmViewReport& v : pass.views) sources.push_back(v.sources);
+    WriteColmapStereoConfigs(out_dir, names, sources);
     sgbm_json = SgbmPassJson(pass);
   }
 
