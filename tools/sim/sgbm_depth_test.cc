@@ -170,6 +170,13 @@ TEST(SgbmBlockTest, TinyBlockWithMatchedDepthMaps) {
     const auto& jv = meta["sgbm"]["views"][v.index];
     EXPECT_EQ(jv["name"], v.name);
     EXPECT_GE(jv["sources"].size(), 1u) << v.name;
+    // patch-match.cfg names the same sources: they are the view's matching partners (independent support).
+    for (const auto& source : jv["sources"]) {
+      const auto it = std::find_if(ws.views().begin(), ws.views().end(),
+                                   [&](const View& u) { return u.name == source.get<std::string>(); });
+      ASSERT_NE(it, ws.views().end());
+      EXPECT_TRUE(std::binary_search(v.matching_partners.begin(), v.matching_partners.end(), it->index)) << v.name;
+    }
     const bool nadir = v.name.rfind("nadir/", 0) == 0;
     EXPECT_LT(jv["median_abs_error_m"].get<double>(), nadir ? 0.2 : 1.0) << v.name;  // 1 / 5 GSD
     const DepthMap depth = ws.ReadDepthMap(v);
