@@ -207,6 +207,7 @@ TEST(OptionTableTest, ResultSettingsTextOfTheDefaultConfigIsUnchanged) {
       "fusion.free_space_window_px: 1\n"
       "fusion.free_space_edge_band_px: 2\nfusion.depth_edge_jump_gsd: 8.0\nfusion.min_consistent_views: 4\n"
       "fusion.outlier_expected_factor: 1.5\nfusion.weak_support_min_views: 0\nfusion.weak_support_rim_px: 2\n"
+      "fusion.independent_support: false\n"
       "fusion.correspondence_tolerance_sigmas: 1.0\n"
       "fusion.coverage_tolerance_sigmas: 5.0\nfusion.combine: \"average\"\nfusion.combine_gate_gsd: 4.0\n"
       "fusion.combine_gate_sigmas: 3.0\nfusion.combine_slope_step_sigmas: 3.0\nfusion.combine_weights: \"view\"\n"
