@@ -86,11 +86,19 @@ uint64_t CameraHash(const View& view) {
   return Fnv1a64(bytes);
 }
 
+uint64_t PartnersHash(const View& view) {
+  if (view.matching_partners.empty()) return 0;
+  std::string bytes;
+  for (const uint32_t partner : view.matching_partners) AppendBytes(&bytes, partner);
+  return Fnv1a64(bytes);
+}
+
 ViewIdentity IdentifyView(const DepthBlock& input, const View& view) {
   ViewIdentity id;
   id.depth = IdentifyFile(input.DepthMapPath(view));
   id.image = IdentifyFile(input.ImagePath(view));
   id.camera_hash = CameraHash(view);
+  id.partners_hash = PartnersHash(view);
   return id;
 }
 
@@ -135,6 +143,9 @@ std::string DescribeViewChange(const ViewIdentity& before, const ViewIdentity& n
   if (parts & kDepthInput) add(DescribeFileChange("depth map", before.depth, now.depth));
   if (parts & kImageInput) add(DescribeFileChange("image", before.image, now.image));
   if ((parts & kCameraInput) && before.camera_hash != now.camera_hash) add("camera changed (pose or intrinsics)");
+  if ((parts & kPartnersInput) && before.partners_hash != now.partners_hash) {
+    add("stereo partners changed (the views its depth map was matched with)");
+  }
   return out;
 }
 
@@ -158,8 +169,10 @@ void CheckInputsUnchanged(const DepthBlock& input, const std::vector<ViewIdentit
 std::string ViewLabel(const View& view) { return "view " + std::to_string(view.index) + " (" + view.name + ")"; }
 
 std::string ViewIdentityJson(const ViewIdentity& id) {
-  const nlohmann::json j = {
+  nlohmann::json j = {
       {"depth", FileJson(id.depth)}, {"image", FileJson(id.image)}, {"camera", HexDigest(id.camera_hash)}};
+  // Only where the input names partners, so that the identities of inputs without them read as before.
+  if (id.partners_hash != 0) j["partners"] = HexDigest(id.partners_hash);
   return j.dump();
 }
 
@@ -170,6 +183,7 @@ std::optional<ViewIdentity> ParseViewIdentityJson(const std::string& text) {
     id.depth = FileFromJson(j.at("depth"));
     id.image = FileFromJson(j.at("image"));
     id.camera_hash = std::stoull(j.at("camera").get<std::string>(), nullptr, 16);
+    if (j.contains("partners")) id.partners_hash = std::stoull(j.at("partners").get<std::string>(), nullptr, 16);
     return id;
   } catch (const std::exception&) {
     return std::nullopt;

@@ -2,7 +2,8 @@
 // What a view's inputs are, so that caches and done markers made from them are reused only while the inputs are
 // the same (issue 14: "inputs are part of the state"). A view's identity is its depth map file, its image file
 // (each: size, modification time in ns, and a cheap content fingerprint, Fnv1a64FileEdges over the first and last
-// 64 KiB and the size) and its camera (a hash of the intrinsics and the pose as read). A file counts as changed
+// 64 KiB and the size), its camera (a hash of the intrinsics and the pose as read) and its stereo partners (the
+// views its depth map was matched with, as the input names them, e.g. COLMAP's stereo/patch-match.cfg). A file counts as changed
 // when any of the three differs, so an edit inside a large file that keeps its size is still caught by its mtime.
 // The files come from the DepthBlock (DepthMapPath, ImagePath): one implementation for every input format.
 #include <cstdint>
@@ -26,7 +27,8 @@ struct FileIdentity {
 
 struct ViewIdentity {
   FileIdentity depth, image;
-  uint64_t camera_hash = 0;  // CameraHash(view)
+  uint64_t camera_hash = 0;    // CameraHash(view)
+  uint64_t partners_hash = 0;  // PartnersHash(view); 0 when the input names no partners
 };
 
 // Which parts of a view's inputs a derived file depends on.
@@ -34,13 +36,16 @@ enum ViewInputParts : unsigned {
   kDepthInput = 1u,
   kImageInput = 2u,
   kCameraInput = 4u,
-  kAllViewInputs = 7u,
+  kPartnersInput = 8u,
+  kAllViewInputs = 15u,
 };
 
 // `path` empty or missing: exists = false. Throws InputError when it exists but cannot be read.
 FileIdentity IdentifyFile(const std::string& path);
 // FNV-1a 64 of the intrinsics (size, fx, fy, cx, cy) and pose (rotation, translation), as their bytes.
 uint64_t CameraHash(const View& view);
+// FNV-1a 64 of the view's matching partners (block indices, in order); 0 for none.
+uint64_t PartnersHash(const View& view);
 ViewIdentity IdentifyView(const DepthBlock& input, const View& view);
 
 // Identities of every view of a block (by view index), with the bytes read and time taken for the log.
@@ -55,7 +60,8 @@ std::string IdentitiesDigest(const std::vector<ViewIdentity>& identities);
 
 // "" when `before` and `now` agree in `parts`; otherwise why not, e.g.
 // "depth map changed (size 1228800 -> 1228800, content hash differs)", "image changed (modified time differs;
-// size and sampled content equal)", "camera changed (pose or intrinsics)"; several separated by "; ".
+// size and sampled content equal)", "camera changed (pose or intrinsics)", "stereo partners changed"; several
+// separated by "; ".
 std::string DescribeViewChange(const ViewIdentity& before, const ViewIdentity& now, unsigned parts = kAllViewInputs);
 
 // Inputs pinned for the length of a run: the views' files (depth map, image) identified now must equal `pinned`

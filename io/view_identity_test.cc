@@ -91,6 +91,30 @@ TEST(ViewIdentityTest, CameraHashSeesPoseAndIntrinsics) {
   EXPECT_EQ(ViewLabel(view), "view 12 (a.jpg)");
 }
 
+// The views a depth map was matched with decide which agreeing maps count as independent support
+// (fusion.independent_support): a tile fused before an edit of patch-match.cfg must not count as done after it.
+TEST(ViewIdentityTest, PartnersAreAPartOfTheIdentity) {
+  View view;
+  EXPECT_EQ(PartnersHash(view), 0u);
+  view.matching_partners = {3, 5};
+  const uint64_t h = PartnersHash(view);
+  EXPECT_NE(h, 0u);
+  View other = view;
+  other.matching_partners = {3, 6};
+  EXPECT_NE(PartnersHash(other), h);
+  ViewIdentity a, b;
+  a.partners_hash = h;
+  b.partners_hash = PartnersHash(other);
+  EXPECT_EQ(DescribeViewChange(a, b), "stereo partners changed (the views its depth map was matched with)");
+  EXPECT_EQ(DescribeViewChange(a, b, kDepthInput | kImageInput | kCameraInput), "");
+  // Written only where known, read back either way.
+  EXPECT_EQ(ViewIdentityJson(ViewIdentity{}).find("partners"), std::string::npos);
+  const auto back = ParseViewIdentityJson(ViewIdentityJson(a));
+  ASSERT_TRUE(back.has_value());
+  EXPECT_EQ(back->partners_hash, h);
+  EXPECT_EQ(DescribeViewChange(a, *back), "");
+}
+
 TEST(ViewIdentityTest, JsonRoundTrip) {
   ViewIdentity id;
   id.depth = {true, 307210, 1795610751979742031, 0xfedcba9876543210ull};
