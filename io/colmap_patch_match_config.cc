@@ -8,15 +8,10 @@
 
 #include "core/error.h"
 #include "io/input_file.h"
+#include "io/trimmed.h"
 
 namespace sacfuse {
 namespace {
-
-std::string Trimmed(const std::string& s) {
-  const size_t begin = s.find_first_not_of(" \t\r\n");
-  if (begin == std::string::npos) return "";
-  return s.substr(begin, s.find_last_not_of(" \t\r\n") - begin + 1);
-}
 
 std::string Quoted(const std::string& s) { return "\"" + s + "\""; }
 

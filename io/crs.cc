@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "io/crs_impl.h"
 #include "io/crs_transform.h"
+#include "io/trimmed.h"
 
 namespace sacfuse {
 
@@ -41,13 +42,6 @@ const char* kInputAccepts =
     "projected CRS in metres (e.g. \"EPSG:32631\"), of a compound one (e.g. \"EPSG:2154+5720\"), or of a "
     "geographic one (e.g. \"EPSG:4979\" WGS 84 latitude/longitude/ellipsoidal height), or \"ENU:lat,lon,h\"";
 
-std::string Trim(const std::string& s) {
-  size_t b = 0, e = s.size();
-  while (b < e && std::isspace(static_cast<unsigned char>(s[b]))) ++b;
-  while (e > b && std::isspace(static_cast<unsigned char>(s[e - 1]))) --e;
-  return s.substr(b, e - b);
-}
-
 bool StartsWithNoCase(const std::string& s, const std::string& prefix) {
   if (s.size() < prefix.size()) return false;
   for (size_t i = 0; i < prefix.size(); ++i) {
@@ -57,7 +51,7 @@ bool StartsWithNoCase(const std::string& s, const std::string& prefix) {
 }
 
 bool ParseDouble(const std::string& s, double* v) {
-  const std::string t = Trim(s);
+  const std::string t = Trimmed(s);
   if (t.empty()) return false;
   char* end = nullptr;
   *v = std::strtod(t.c_str(), &end);
@@ -203,7 +197,7 @@ std::shared_ptr<CrsImpl> ParseEnu(const Parsing& p, const std::string& t) {
     const bool last = i == 2;
     if (last != (comma == std::string::npos)) p.Fail("ENU needs exactly three numbers lat,lon,h");
     const std::string item = rest.substr(start, last ? std::string::npos : comma - start);
-    if (!ParseDouble(item, &v[i])) p.Fail(CrsQuoted(Trim(item)) + " is not a finite number");
+    if (!ParseDouble(item, &v[i])) p.Fail(CrsQuoted(Trimmed(item)) + " is not a finite number");
     start = comma + 1;
   }
   if (std::abs(v[0]) > 90.0) p.Fail("ENU origin latitude must be in [-90, 90] degrees");
@@ -339,7 +333,7 @@ std::shared_ptr<CrsImpl> ParseWithProj(const Parsing& p, const std::string& t) {
 }
 
 Crs Parse(const Parsing& p) {
-  const std::string t = Trim(p.text);
+  const std::string t = Trimmed(p.text);
   if (t.empty()) {
     auto c = std::make_shared<CrsImpl>();
     c->text = p.text;

@@ -7,14 +7,10 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/trimmed.h"
 
 namespace sacfuse {
 namespace {
-
-std::string Trimmed(std::string line) {
-  while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
-  return line;
-}
 
 std::vector<std::string> Words(const std::string& line) {
   std::istringstream in(line);
