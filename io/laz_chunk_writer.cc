@@ -51,8 +51,13 @@ const std::vector<std::vector<uint8_t>>& LazChunkWriter::Chunks(const uint8_t* r
   tbb::parallel_for(size_t{0}, num_encoders, [&](size_t k) {
     for (size_t i = k; i < num_chunks; i += num_encoders) {
       const size_t first = i * kChunkPoints;
-      chunks_[i].clear();
-      encoders_[k]->Encode(records + first * record_length_, std::min(kChunkPoints, count - first), &chunks_[i]);
+      // Coded into a vector of this task's own (chunks_[i]'s storage, swapped in and out): the chunks' vector
+      // headers share cache lines, and a point-wise encoder appends byte by byte (false sharing).
+      std::vector<uint8_t> bytes;
+      bytes.swap(chunks_[i]);
+      bytes.clear();
+      encoders_[k]->Encode(records + first * record_length_, std::min(kChunkPoints, count - first), &bytes);
+      chunks_[i].swap(bytes);
     }
   });
   for (size_t i = 0; i < num_chunks; ++i) {

@@ -176,12 +176,16 @@ void LazPointReader::DecodeBatch(size_t first, Batch* batch) {
       errors[i] = name + ": " + e.what();
       return;
     }
+    // Counted in a local: decoded[i] shares a cache line with the other chunks' counts, and a store to it per
+    // record made the threads decoding neighbouring chunks wait for each other (false sharing).
+    uint64_t done = 0;
     try {
-      for (; decoded[i] < c.points; ++decoded[i]) decoders_[i]->Next(out + decoded[i] * record_length_);
+      for (; done < c.points; ++done) decoders_[i]->Next(out + done * record_length_);
     } catch (const laz::DataError& e) {
       errors[i] = name + " (points " + std::to_string(c.first_point) + ".." +
                   std::to_string(c.first_point + c.points - 1) + "): " + e.what();
     }
+    decoded[i] = done;
   });
   // The records up to the first error, in file order; the error is raised when the reading gets there.
   batch->first_chunk = first;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include <tbb/parallel_for.h>
+
 namespace sacfuse {
 
 TopGrid::TopGrid(double x_min_m, double y_max_m, double cell_size_m, int width_cells, int height_cells)
@@ -39,6 +41,41 @@ void TopGrid::AddToCell(size_t i, double z, uint16_t point_source_id) {
     top_z[i] = zf;
     source_id[i] = point_source_id;
   }
+}
+
+TopGridFiller::TopGridFiller(TopGrid* grid, size_t bands)
+    : grid_(grid),
+      bands_(std::clamp<size_t>(bands, 1, std::max<size_t>(1, static_cast<size_t>(grid->height)))),
+      band_of_row_(static_cast<size_t>(std::max(0, grid->height))) {
+  const size_t rows = band_of_row_.size();
+  for (size_t b = 0; b < bands_; ++b) {
+    for (size_t row = rows * b / bands_; row < rows * (b + 1) / bands_; ++row) band_of_row_[row] = static_cast<uint32_t>(b);
+  }
+}
+
+void TopGridFiller::Add(const std::vector<LasPoint>& points) {
+  constexpr size_t kBlock = 4096;
+  const TopGrid& grid = *grid_;
+  cells_.resize(points.size());
+  const size_t blocks = (points.size() + kBlock - 1) / kBlock;
+  if (in_band_.size() < blocks * bands_) in_band_.resize(blocks * bands_);
+  tbb::parallel_for(size_t{0}, blocks, [&](size_t k) {
+    std::vector<uint32_t>* lists = in_band_.data() + k * bands_;
+    for (size_t b = 0; b < bands_; ++b) lists[b].clear();
+    for (size_t i = k * kBlock; i < std::min(points.size(), (k + 1) * kBlock); ++i) {
+      const std::optional<size_t> cell = grid.CellOf(points[i].xyz.x(), points[i].xyz.y());
+      if (!cell) continue;
+      cells_[i] = *cell;
+      lists[band_of_row_[*cell / static_cast<size_t>(grid.width)]].push_back(static_cast<uint32_t>(i));
+    }
+  });
+  tbb::parallel_for(size_t{0}, bands_, [&](size_t b) {
+    for (size_t k = 0; k < blocks; ++k) {
+      for (const uint32_t i : in_band_[k * bands_ + b]) {
+        grid_->AddToCell(cells_[i], points[i].xyz.z(), points[i].point_source_id);
+      }
+    }
+  });
 }
 
 double TopGridCellSize(double extent_x_m, double extent_y_m, uint64_t points, int max_cells, double min_cell_m) {

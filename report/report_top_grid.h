@@ -10,6 +10,8 @@
 #include <optional>
 #include <vector>
 
+#include "io/las_types.h"
+
 namespace sacfuse {
 
 struct TopGrid {
@@ -40,6 +42,26 @@ struct TopGrid {
   bool Add(double x, double y, double z, uint16_t point_source_id);
   // Adds one point to cell `i` (< num_cells()), as Add does.
   void AddToCell(size_t i, double z, uint16_t point_source_id);
+};
+
+// Adds streamed points to a grid on the calling task arena's threads: the grid's rows in `bands` bands, each band
+// filled by one task from the points that fall in it, in their order, so every cell sees its points in the
+// stream's order and the grid is the same as adding them one by one with TopGrid::Add, for any number of bands
+// and threads. Each block of 4,096 points is sorted into the bands once (a list of point indices per block and
+// band), so the work does not grow with the number of bands. Holds a cell index per point of the largest batch
+// added and the bands' index lists (4 bytes a point).
+class TopGridFiller {
+ public:
+  // `grid` must outlive the filler; `bands` >= 1 (more than the grid's rows are as many as its rows).
+  TopGridFiller(TopGrid* grid, size_t bands);
+  void Add(const std::vector<LasPoint>& points);
+
+ private:
+  TopGrid* grid_;
+  size_t bands_;
+  std::vector<uint32_t> band_of_row_;
+  std::vector<size_t> cells_;                  // per point of the batch: its cell
+  std::vector<std::vector<uint32_t>> in_band_;  // [block * bands + band]: the block's points in the band, in order
 };
 
 // Cell size for a cloud of `points` over the XY box [min_x, max_x] x [min_y, max_y]: at least 2.5 x the mean point

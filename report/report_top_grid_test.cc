@@ -1,7 +1,10 @@
 // The report's top grid: topmost point and its source per cell, cell placement, sizing.
 #include "report/report_top_grid.h"
 
+#include <random>
+
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 namespace sacfuse {
 namespace {
@@ -38,6 +41,39 @@ TEST(ReportTopGridTest, CellSizeFollowsPointSpacingWhenSparse) {
   EXPECT_NEAR(TopGridCellSize(100.0, 100.0, 10000, 1000, 0.05), 2.5, 1e-9);
   // Dense: the floor.
   EXPECT_NEAR(TopGridCellSize(10.0, 10.0, 100000000, 1000, 0.05), 0.05, 1e-9);
+}
+
+TEST(ReportTopGridTest, FillerGivesTheGridOfAddingPointByPointForAnyBandsAndThreads) {
+  // 3 batches of 10,000 points (blocks of 4,096 cut across them), many on the same heights so that ties between
+  // sources decide by order, some outside the grid.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> xy(-2.0, 42.0);
+  std::uniform_int_distribution<int> z(0, 7), id(1, 9);
+  std::vector<std::vector<LasPoint>> batches(3, std::vector<LasPoint>(10000));
+  TopGrid serial(0.0, 40.0, 1.0, 40, 37);
+  for (std::vector<LasPoint>& batch : batches) {
+    for (LasPoint& p : batch) {
+      p.xyz = {xy(rng), xy(rng), 0.5 * z(rng)};
+      p.point_source_id = static_cast<uint16_t>(id(rng));
+      serial.Add(p.xyz.x(), p.xyz.y(), p.xyz.z(), p.point_source_id);
+    }
+  }
+  for (const int threads : {1, 3}) {
+    for (const size_t bands : {size_t{1}, size_t{2}, size_t{7}, size_t{100}}) {
+      TopGrid grid(0.0, 40.0, 1.0, 40, 37);
+      tbb::task_arena(threads).execute([&] {
+        TopGridFiller filler(&grid, bands);
+        for (const std::vector<LasPoint>& batch : batches) filler.Add(batch);
+      });
+      EXPECT_EQ(grid.count, serial.count) << threads << " threads, " << bands << " bands";
+      EXPECT_EQ(grid.source_id, serial.source_id) << threads << " threads, " << bands << " bands";
+      for (size_t i = 0; i < grid.num_cells(); ++i) {
+        ASSERT_TRUE(grid.top_z[i] == serial.top_z[i] || (std::isnan(grid.top_z[i]) && std::isnan(serial.top_z[i])))
+            << "cell " << i;
+      }
+    }
+  }
+  EXPECT_GT(serial.count[serial.Index(0, 0)], 0u);
 }
 
 }  // namespace

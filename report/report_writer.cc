@@ -6,12 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <limits>
 #include <sstream>
 
 #include <spdlog/spdlog.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_group.h>
 
@@ -36,31 +33,14 @@ namespace {
 constexpr size_t kLasChunk = 1 << 16;
 constexpr const char* kFiguresJson = "figures.json";
 
-// Streams fused.las into a top grid sized from its header.
+// Streams fused.las into a top grid sized from its header, one band of the grid's rows per thread.
 TopGrid ScanTopGrid(const ReportCloud& cloud, const ReportOptions& o) {
   TopGrid grid = MakeTopGrid(cloud.min[0], cloud.min[1], cloud.max[0], cloud.max[1], cloud.points, o.max_map_cells,
                              o.min_cell_m);
   LasReader reader(cloud.path);
   std::vector<LasPoint> chunk;
-  std::vector<size_t> cells;
-  constexpr size_t kOutside = std::numeric_limits<size_t>::max();
-  // The grid's rows in one band per thread: each band takes the chunk's points that fall in it, in the chunk's
-  // order, so every cell sees its points in the file's order (the top grid is the same for any thread count).
-  const size_t bands = std::min<size_t>(static_cast<size_t>(tbb::this_task_arena::max_concurrency()),
-                                        static_cast<size_t>(grid.height));
-  while (reader.Read(&chunk, kLasChunk) > 0) {
-    cells.resize(chunk.size());
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, chunk.size(), 4096), [&](const tbb::blocked_range<size_t>& r) {
-      for (size_t i = r.begin(); i < r.end(); ++i) cells[i] = grid.CellOf(chunk[i].xyz.x(), chunk[i].xyz.y()).value_or(kOutside);
-    });
-    tbb::parallel_for(size_t{0}, bands, [&](size_t b) {
-      const size_t first = grid.Index(static_cast<int>(grid.height * b / bands), 0);
-      const size_t end = grid.Index(static_cast<int>(grid.height * (b + 1) / bands), 0);
-      for (size_t i = 0; i < chunk.size(); ++i) {
-        if (cells[i] >= first && cells[i] < end) grid.AddToCell(cells[i], chunk[i].xyz.z(), chunk[i].point_source_id);
-      }
-    });
-  }
+  TopGridFiller filler(&grid, static_cast<size_t>(tbb::this_task_arena::max_concurrency()));
+  while (reader.Read(&chunk, kLasChunk) > 0) filler.Add(chunk);
   return grid;
 }
 
