@@ -49,7 +49,9 @@ TopGridFiller::TopGridFiller(TopGrid* grid, size_t bands)
       band_of_row_(static_cast<size_t>(std::max(0, grid->height))) {
   const size_t rows = band_of_row_.size();
   for (size_t b = 0; b < bands_; ++b) {
-    for (size_t row = rows * b / bands_; row < rows * (b + 1) / bands_; ++row) band_of_row_[row] = static_cast<uint32_t>(b);
+    for (size_t row = rows * b / bands_; row < rows * (b + 1) / bands_; ++row) {
+      band_of_row_[row] = static_cast<uint32_t>(b);
+    }
   }
 }
 
