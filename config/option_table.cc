@@ -154,9 +154,10 @@ ConfigSchema MakeOptionTable(JobConfig* c) {
               "smoothness between adjacent clusters (0 = off)");
   s.AddInt("fusion.smoothness_rounds", &f.smoothness_rounds, Affects("rounds", Closed(0, 20), kSac),
            "rounds of that smoothness");
-  s.AddString("fusion.collapse", &f.collapse, Affects("-", Choices({"netlet", "best_view"}), kSac),
+  s.AddString("fusion.collapse", &f.collapse, Affects("-", Choices({"netlet", "best_view", "none"}), kSac),
               "collapse: netlet (drop pixels the Netlet's chosen view emits) | best_view (also those a more precise "
-              "view holds)");
+              "view holds) | none (keep every view's pixels that pass their own tests: for a stereo matcher's depth "
+              "maps)");
   s.AddDouble("fusion.redundancy_tolerance_sigmas", &f.redundancy_tolerance_sigmas, Affects("sigma", AtLeast(0), kSac),
               "best_view: 'same surface' also within this many sigmas of estimated noise (0 = strict tolerance)");
   s.AddInt("fusion.free_space_min_views", &f.free_space_min_views, Affects("views", Closed(0, 64), kSac),

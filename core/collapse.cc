@@ -101,6 +101,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
   combine_options.later_pass_gate = options.combine_later_pass_gate;
   combine_options.later_pass_min_shift_gsd = options.combine_later_pass_min_shift_gsd;
   const bool best_view = options.collapse == "best_view";
+  const bool collapse_none = options.collapse == "none";
   // Per patch of the batch: its points in row order and the row of each.
   struct PatchOutput {
     std::vector<FusedPoint> points;
@@ -154,7 +155,7 @@ CollapseStats EmitView(uint32_t v, const std::vector<SacView>& views, const Node
           continue;
         }
         const uint32_t node_id = nodes.Id(v, static_cast<uint32_t>(view.superpixels->label(row, col)));
-        const uint32_t label = chosen_view.At(node_id);
+        const uint32_t label = collapse_none ? v : chosen_view.At(node_id);
         if (label != v) {
           if (ChoiceCovers(views, v, point, d, label, nodes, chosen_view, noise_factor, verdicts, options)) {
             ++stats.collapsed;

@@ -7,7 +7,8 @@
 // the tolerance, or — with estimated noise — within coverage_tolerance_sigmas sigma of the two depths' difference), and
 // the cluster there chose L itself — or chose L2, and the same holds in L2 (up to 4 hops, never back to a).
 // Otherwise the pixel is emitted from its own view. So no surface patch observed consistently is lost.
-// With `collapse: best_view` so are pixels a more precise view emits (core/redundancy.h). A pixel that is not dropped
+// With `collapse: best_view` so are pixels a more precise view emits (core/redundancy.h); with `collapse: none` no
+// pixel is dropped for another view (neither test is made, so no Netlet is labelled). A pixel that is not dropped
 // in favour of another view is emitted when it passes its own outlier and free-space tests (core/point_verdicts.h);
 // the other view's pixel must pass them too, so no pixel is dropped in favour of an outlier.
 #include <cstdint>

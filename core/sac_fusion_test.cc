@@ -84,6 +84,45 @@ TEST(SacFusionTest, TwoViewsQualityUnarySelectsTheFinerViewAndKeepsCoverage) {
   EXPECT_EQ(stats.collapse.emitted, sink.points().size());
 }
 
+// collapse: none keeps every view's pixels that pass their own tests: both views of a plane emit every pixel, none is
+// dropped for the other view, and no Netlet is labelled (nothing asks for a label). The own tests still hold: with
+// two agreeing views needed, view 1's pixels that view 0 does not see are outliers.
+TEST(SacFusionTest, CollapseNoneKeepsEveryViewsPixelsThatPassTheirOwnTests) {
+  SyntheticBlock block;
+  block.Add(NadirView(0, kEast, kNorth, 250.0), PlaneDepth(NadirView(0, kEast, kNorth, 250.0)));
+  block.Add(NadirView(1, kEast + 8.0, kNorth, 500.0), PlaneDepth(NadirView(1, kEast + 8.0, kNorth, 500.0)));
+  const auto views = block.SacViews();
+  SacOptions options = TestOptions();
+  options.collapse = "none";
+  CollectingSink sink;
+  const SacStats stats = RunSacFusion(views, options, sink);
+  EXPECT_EQ(stats.emitted_per_view[0], views[0].depth->num_pixels());
+  EXPECT_EQ(stats.emitted_per_view[1], views[1].depth->num_pixels());
+  EXPECT_EQ(stats.collapse.redundant, 0u);
+  EXPECT_EQ(stats.collapse.collapsed, 0u);
+  EXPECT_EQ(stats.collapse.kept_uncovered, 0u);
+  EXPECT_EQ(stats.labeling.labelled_nodes, 0u);
+  EXPECT_EQ(sink.points().size(), views[0].depth->num_pixels() + views[1].depth->num_pixels());
+
+  // View 1 sees 4x view 0's ground area: only its pixels inside view 0's footprint have a second agreeing view.
+  options.min_consistent_views = 2;
+  CollectingSink strict_sink;
+  const SacStats strict = RunSacFusion(views, options, strict_sink);
+  EXPECT_EQ(strict.emitted_per_view[0], views[0].depth->num_pixels());
+  const double half_width_0 = 60 * 250.0 / 3000.0, half_height_0 = 45 * 250.0 / 3000.0;
+  uint64_t inside = 0;
+  for (int r = 0; r < 90; ++r) {
+    for (int c = 0; c < 120; ++c) {
+      const Eigen::Vector3d p = DepthPixelToWorld(views[1].depth_camera, views[1].world_from_cam, c, r,
+                                                  views[1].depth->at(r, c));
+      if (std::abs(p.x() - kEast) < half_width_0 && std::abs(p.y() - kNorth) < half_height_0) ++inside;
+    }
+  }
+  // Up to a one-pixel rim of view 0's footprint (60 x 45 pixels of view 1).
+  EXPECT_NEAR(static_cast<double>(strict.emitted_per_view[1]), static_cast<double>(inside), 2.0 * (60 + 45));
+  EXPECT_EQ(strict.collapse.outliers, views[1].depth->num_pixels() - strict.emitted_per_view[1]);
+}
+
 // Three equal views; view 1's depth map is biased by +0.6 m. Views 0 and 2 agree with each other, view 1 with
 // nobody: the Netlets must select a consistent view, so no point of the biased surface survives where the others
 // see. (The averaging combine weighs view 1 by its estimated noise factor, which its bias makes large.)

@@ -24,7 +24,7 @@ void ValidateSacOptions(const SacOptions& o) {
   c.AtLeast("SacOptions.displacement_weight", o.displacement_weight, 0.0);
   c.AtLeast("SacOptions.smoothness_weight", o.smoothness_weight, 0.0);
   c.InRange("SacOptions.smoothness_rounds", o.smoothness_rounds, 0, 20);
-  c.OneOf("SacOptions.collapse", o.collapse, {"netlet", "best_view"});
+  c.OneOf("SacOptions.collapse", o.collapse, {"netlet", "best_view", "none"});
   c.AtLeast("SacOptions.redundancy_tolerance_sigmas", o.redundancy_tolerance_sigmas, 0.0);
   c.InRange("SacOptions.free_space_min_views", o.free_space_min_views, 0, 64);
   c.AtLeast("SacOptions.free_space_sigmas", o.free_space_sigmas, 0.0);

@@ -58,6 +58,9 @@ struct SacOptions {
   //   netlet:    a pixel is dropped when the view its Netlet chose emits that surface (the coverage rule).
   //   best_view: also when a more precise view (lower estimated depth noise there) holds and emits the same surface,
   //              so each surface patch comes from one depth map.
+  //   none:      nothing is dropped for another view: every view's pixels that pass their own point tests are
+  //              emitted (each averaged when combine: average). For depth maps from a stereo matcher, whose errors
+  //              one patch's single view does not average out (docs/design.md, "Collapse").
   std::string collapse = "best_view";
   double redundancy_tolerance_sigmas = 3.0;  // best_view: "same surface" also within this many sigmas of the
                                              // estimated noise of the two depths' difference (0 = strict tolerance)
