@@ -104,23 +104,30 @@ TEST(SacFusionTest, CollapseNoneKeepsEveryViewsPixelsThatPassTheirOwnTests) {
   EXPECT_EQ(stats.labeling.labelled_nodes, 0u);
   EXPECT_EQ(sink.points().size(), views[0].depth->num_pixels() + views[1].depth->num_pixels());
 
-  // View 1 sees 4x view 0's ground area: only its pixels inside view 0's footprint have a second agreeing view.
+  // With two agreeing views needed, a pixel is kept exactly where the other view sees its ground too (view 1 sees
+  // 4x view 0's ground area, 8 m to the east).
   options.min_consistent_views = 2;
   CollectingSink strict_sink;
   const SacStats strict = RunSacFusion(views, options, strict_sink);
-  EXPECT_EQ(strict.emitted_per_view[0], views[0].depth->num_pixels());
-  const double half_width_0 = 60 * 250.0 / 3000.0, half_height_0 = 45 * 250.0 / 3000.0;
-  uint64_t inside = 0;
-  for (int r = 0; r < 90; ++r) {
-    for (int c = 0; c < 120; ++c) {
-      const Eigen::Vector3d p = DepthPixelToWorld(views[1].depth_camera, views[1].world_from_cam, c, r,
-                                                  views[1].depth->at(r, c));
-      if (std::abs(p.x() - kEast) < half_width_0 && std::abs(p.y() - kNorth) < half_height_0) ++inside;
+  auto seen_by_other = [&](int v) {
+    const SacView& own = views[v];
+    const SacView& other = views[1 - v];
+    uint64_t seen = 0;
+    for (int r = 0; r < own.depth->height; ++r) {
+      for (int c = 0; c < own.depth->width; ++c) {
+        const Eigen::Vector3d p = DepthPixelToWorld(own.depth_camera, own.world_from_cam, c, r, own.depth->at(r, c));
+        if (LookupDepth(other, p).inside) ++seen;
+      }
     }
-  }
-  // Up to a one-pixel rim of view 0's footprint (60 x 45 pixels of view 1).
-  EXPECT_NEAR(static_cast<double>(strict.emitted_per_view[1]), static_cast<double>(inside), 2.0 * (60 + 45));
-  EXPECT_EQ(strict.collapse.outliers, views[1].depth->num_pixels() - strict.emitted_per_view[1]);
+    return seen;
+  };
+  // 70 % of view 0 (its western 3 m of 10 m lie outside view 1), 42 x 45 pixels of view 1.
+  EXPECT_EQ(seen_by_other(0), 7560u);
+  EXPECT_EQ(seen_by_other(1), 1890u);
+  EXPECT_EQ(strict.emitted_per_view[0], 7560u);
+  EXPECT_EQ(strict.emitted_per_view[1], 1890u);
+  EXPECT_EQ(strict.collapse.redundant + strict.collapse.collapsed + strict.collapse.kept_uncovered, 0u);
+  EXPECT_EQ(strict.collapse.outliers, 2u * 120u * 90u - 7560u - 1890u);
 }
 
 // Three equal views; view 1's depth map is biased by +0.6 m. Views 0 and 2 agree with each other, view 1 with
