@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
+#include <mutex>
 
 #include <Eigen/Geometry>
 #include <proj_experimental.h>
@@ -535,7 +537,18 @@ Eigen::Matrix3d ProjectFromLocalEnuRotation(const Crs& crs, double lat_deg, doub
 }
 
 CrsLabel LabelCrs(const std::string& definition) {
+  // PROJ reads its database to name a CRS (~10 ms of one core each time): a merge labels every tile's record, all
+  // alike, and so do the report and the tile index. Memoised per definition and PROJ search path (where proj.db is
+  // found), for the process's life; a definition PROJ cannot read is not kept (its error comes again).
+  static std::mutex memo_mutex;
+  static std::map<std::string, CrsLabel> memo;
   ProjContext ctx;
+  const std::string key = JoinedSearchPaths(ctx) + '\n' + definition;
+  {
+    std::lock_guard<std::mutex> lock(memo_mutex);
+    const auto found = memo.find(key);
+    if (found != memo.end()) return found->second;
+  }
   PjPtr crs(proj_create(ctx.get(), definition.c_str()));
   if (!crs) throw Error("PROJ cannot read the CRS: " + ctx.TakeMessages());
   CrsLabel label;
@@ -545,6 +558,8 @@ CrsLabel LabelCrs(const std::string& definition) {
   if (label.code.empty() && proj_get_type(crs.get()) == PJ_TYPE_BOUND_CRS) {
     label.code = CodeOf(ctx, Unbound(ctx, crs.get()).get());
   }
+  std::lock_guard<std::mutex> lock(memo_mutex);
+  memo.emplace(key, label);
   return label;
 }
 

@@ -72,9 +72,10 @@ struct LasWriter::Impl {
   FILE* file = nullptr;
   std::unique_ptr<LazChunkWriter> laz;  // set when writing LAZ
   size_t buffer_records = kBufferRecords;
-  // Up to buffer_records records; grown as records arrive (LAZ: 8 chunks of 50,000, 14 MB at 36 B a record, so a
-  // small tile's writer does not hold the whole batch).
-  std::vector<uint8_t> buffer;
+  // Room for buffer_records records (LAZ: 8 chunks of 50,000, 14 MB at 36 B a record), allocated at the first
+  // write and never zero-filled nor grown: its pages become memory as records land on them, so a small tile's
+  // writer does not hold the whole batch, and a merge's writer touches each page once.
+  std::unique_ptr<uint8_t[]> buffer;
   size_t buffered = 0;          // records in buffer
   uint64_t count = 0;
   std::array<uint64_t, 15> by_return = {};
@@ -94,22 +95,23 @@ struct LasWriter::Impl {
     throw Error(path + ": " + message);
   }
 
-  // Checks (first pass) or stores (second pass) one point; throws naming the point on a value the format
-  // cannot hold.
-  void EncodeOne(const LasPoint& point, uint64_t index, const Eigen::Vector3d& use_offset, uint8_t* record) {
+  // Stores one point as a record; returns what the format cannot hold of it (empty when nothing).
+  std::string StoreOne(const LasPoint& point, const Eigen::Vector3d& use_offset, uint8_t* record) const {
     std::array<int32_t, 3> stored;
     for (int a = 0; a < 3; ++a) {
       if (!lf::Quantise(point.xyz[a], scale[a], use_offset[a], &stored[a])) {
-        throw Error(path + ": point " + std::to_string(index) + ": " + kAxisNames[a] + " = " +
-                    FormatDouble(point.xyz[a]) + " does not fit a LAS int32 at scale " + FormatDouble(scale[a]) +
-                    " and offset " + FormatDouble(use_offset[a]) + " (choose an offset near the data)");
+        return std::string(kAxisNames[a]) + " = " + FormatDouble(point.xyz[a]) + " does not fit a LAS int32 at scale " +
+               FormatDouble(scale[a]) + " and offset " + FormatDouble(use_offset[a]) + " (choose an offset near the data)";
       }
     }
     std::memset(record, 0, record_length);
-    const std::string problem = lf::EncodePointRecord(point, stored, pdrf, record);
-    if (!problem.empty()) {
-      throw Error(path + ": point " + std::to_string(index) + ": " + problem);
-    }
+    return lf::EncodePointRecord(point, stored, pdrf, record);
+  }
+  // Checks (first pass) or stores (second pass) one point; throws naming the point on a value the format
+  // cannot hold.
+  void EncodeOne(const LasPoint& point, uint64_t index, const Eigen::Vector3d& use_offset, uint8_t* record) const {
+    const std::string problem = StoreOne(point, use_offset, record);
+    if (!problem.empty()) throw Error(path + ": point " + std::to_string(index) + ": " + problem);
   }
 
   Eigen::Vector3d OffsetFor(const LasPoint& first, uint64_t index) const {
@@ -164,6 +166,47 @@ struct LasWriter::Impl {
   // so the file is the same for any thread count.
   static constexpr size_t kEncodeGrain = 4096;
 
+  // Stores points 0..n-1 (`get(i)`, each checked already) as records at `records`, in parallel; their stats.
+  // `index` is the first one's index in the file, for EncodeOne's messages.
+  template <typename GetPoint>
+  RecordStats EncodeRecords(size_t n, GetPoint get, uint64_t index, const Eigen::Vector3d& use_offset,
+                            uint8_t* records) const {
+    return tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, n, kEncodeGrain), RecordStats{},
+        [&](const tbb::blocked_range<size_t>& r, RecordStats acc) {
+          for (size_t i = r.begin(); i < r.end(); ++i) {
+            const LasPoint& point = get(i);
+            uint8_t* record = records + i * record_length;
+            EncodeOne(point, index + i, use_offset, record);
+            for (int a = 0; a < 3; ++a) {
+              const int32_t v = lf::GetI32(record + 4 * a);
+              acc.lo[a] = std::min(acc.lo[a], v);
+              acc.hi[a] = std::max(acc.hi[a], v);
+            }
+            if (point.return_number >= 1 && point.return_number <= 15) ++acc.returns[point.return_number - 1];
+          }
+          return acc;
+        },
+        [](RecordStats a, const RecordStats& b) {
+          a.Add(b);
+          return a;
+        });
+  }
+
+  // Puts `n` records into the buffer in runs that end where it fills and is flushed: `store(first, take, at)`
+  // writes records first..first+take-1 at `at`. The caller counts them (CountStored).
+  template <typename Store>
+  void BufferRecords(size_t n, Store store) {
+    if (!buffer) buffer.reset(new uint8_t[buffer_records * record_length]);  // not zero-filled: see `buffer`
+    for (size_t first = 0; first < n;) {
+      const size_t take = std::min(n - first, buffer_records - buffered);
+      store(first, take, buffer.get() + buffered * record_length);
+      buffered += take;
+      first += take;
+      if (buffered == buffer_records) FlushBuffer();
+    }
+  }
+
   template <typename GetPoint>
   void WriteChunk(size_t n, GetPoint get) {
     CheckWritable(n);
@@ -184,46 +227,14 @@ struct LasWriter::Impl {
       std::vector<uint8_t> scratch(record_length);
       for (size_t i = 0; i < n; ++i) EncodeOne(get(i), count + i, use_offset, scratch.data());
     }
-    // Pass 2: store, in runs that end where the buffer fills and is flushed.
+    // Pass 2: store.
     if (!offset) offset = use_offset;  // (not rewritten once set: PrepareLazAppend may read it meanwhile)
-    for (size_t first = 0; first < n;) {
-      const size_t take = std::min(n - first, buffer_records - buffered);
-      if ((buffered + take) * record_length > buffer.size()) {
-        const size_t grown = std::max({size_t{4096}, 2 * buffered, buffered + take});
-        buffer.resize(std::min(buffer_records, grown) * record_length);
-      }
-      uint8_t* const records = buffer.data() + buffered * record_length;
-      const uint64_t index = count;
-      const RecordStats stats = tbb::parallel_reduce(
-          tbb::blocked_range<size_t>(0, take, kEncodeGrain), RecordStats{},
-          [&](const tbb::blocked_range<size_t>& r, RecordStats acc) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-              const LasPoint point = get(first + i);
-              uint8_t* record = records + i * record_length;
-              EncodeOne(point, index + i, use_offset, record);
-              for (int a = 0; a < 3; ++a) {
-                const int32_t v = lf::GetI32(record + 4 * a);
-                acc.lo[a] = std::min(acc.lo[a], v);
-                acc.hi[a] = std::max(acc.hi[a], v);
-              }
-              if (point.return_number >= 1 && point.return_number <= 15) ++acc.returns[point.return_number - 1];
-            }
-            return acc;
-          },
-          [](RecordStats a, const RecordStats& b) {
-            a.Add(b);
-            return a;
-          });
-      for (int a = 0; a < 3; ++a) {
-        stored_min[a] = count == 0 ? stats.lo[a] : std::min(stored_min[a], stats.lo[a]);
-        stored_max[a] = count == 0 ? stats.hi[a] : std::max(stored_max[a], stats.hi[a]);
-      }
-      for (size_t r = 0; r < by_return.size(); ++r) by_return[r] += stats.returns[r];
-      count += take;
-      buffered += take;
-      first += take;
-      if (buffered == buffer_records) FlushBuffer();
-    }
+    RecordStats stats;
+    BufferRecords(n, [&](size_t first, size_t take, uint8_t* records) {
+      stats.Add(EncodeRecords(
+          take, [&](size_t i) -> decltype(auto) { return get(first + i); }, count + first, use_offset, records));
+    });
+    CountStored(n, stats.lo, stats.hi, stats.returns);
   }
 };
 
@@ -340,12 +351,12 @@ void LasWriter::Impl::WriteBytes(const uint8_t* data, size_t size) {
 void LasWriter::Impl::FlushBuffer() {
   if (laz) {
     if (buffered > 0) {
-      for (const std::vector<uint8_t>& chunk : laz->Chunks(buffer.data(), buffered)) {
+      for (const std::vector<uint8_t>& chunk : laz->Chunks(buffer.get(), buffered)) {
         WriteBytes(chunk.data(), chunk.size());
       }
     }
   } else {
-    WriteBytes(buffer.data(), buffered * record_length);
+    WriteBytes(buffer.get(), buffered * record_length);
   }
   buffered = 0;
 }
@@ -407,22 +418,45 @@ std::optional<LazAppendPart> LasWriter::Impl::PrepareLazAppend(LasReader& reader
   if (!reader.SkipStoredChunks(part.full_chunks)) {
     throw InputError(reader.path(), "its LAZ chunks could not be skipped to its last chunk");
   }
-  reader.Read(&part.tail, static_cast<size_t>(h.point_count - part.full_chunks * LazChunkWriter::kChunkPoints));
+  std::vector<LasPoint> tail;
+  reader.Read(&tail, static_cast<size_t>(h.point_count - part.full_chunks * LazChunkWriter::kChunkPoints));
   const int counted_returns = version_minor >= 4 ? 15 : 5;
-  for (const LasPoint& p : part.tail) {
+  for (const LasPoint& p : tail) {
     if (p.return_number < 1 || p.return_number > counted_returns) continue;
     if (part.copied_returns[p.return_number - 1] == 0) {
       throw InputError(reader.path(), "its header does not count its returns");
     }
     --part.copied_returns[p.return_number - 1];
   }
+  // Stored here, on the caller's thread, as WritePoints would (in one pass: the records are the part's own until
+  // appended); when a point fails, a serial pass names the first one.
+  part.tail_points = tail.size();
+  part.tail_records.resize(tail.size() * record_length);
+  RecordStats stats;
+  try {
+    stats = EncodeRecords(
+        tail.size(), [&](size_t i) -> const LasPoint& { return tail[i]; }, 0, *offset, part.tail_records.data());
+  } catch (const Error&) {
+    const uint64_t first_tail_point = part.full_chunks * LazChunkWriter::kChunkPoints;
+    for (size_t i = 0; i < tail.size(); ++i) {
+      const std::string problem = StoreOne(tail[i], *offset, part.tail_records.data());
+      if (!problem.empty()) {
+        throw InputError(reader.path(), "point " + std::to_string(first_tail_point + i) +
+                                            " cannot be written to " + path + ": " + problem);
+      }
+    }
+    throw;
+  }
+  part.tail_min = stats.lo;
+  part.tail_max = stats.hi;
+  part.tail_returns = stats.returns;
   return part;
 }
 
 void LasWriter::Impl::AppendLaz(LasReader& reader, const LazAppendPart& part) {
   const uint64_t copied_points = part.full_chunks * LazChunkWriter::kChunkPoints;
-  CheckWritable(copied_points + part.tail.size());
-  if (copied_points + part.tail.size() == 0) return;
+  CheckWritable(copied_points + part.tail_points);
+  if (copied_points + part.tail_points == 0) return;
   reader.Rewind();
   try {
     std::vector<uint8_t> bytes;
@@ -434,7 +468,12 @@ void LasWriter::Impl::AppendLaz(LasReader& reader, const LazAppendPart& part) {
       WriteBytes(bytes.data(), bytes.size());
       laz->AddStoredChunk(bytes.size());
     }
-    WriteChunk(part.tail.size(), [&](size_t i) -> const LasPoint& { return part.tail[i]; });
+    if (part.tail_points > 0) {
+      BufferRecords(part.tail_points, [&](size_t first, size_t take, uint8_t* records) {
+        std::memcpy(records, part.tail_records.data() + first * record_length, take * record_length);
+      });
+      CountStored(part.tail_points, part.tail_min, part.tail_max, part.tail_returns);
+    }
     CountStored(copied_points, part.stored_min, part.stored_max, part.copied_returns);
   } catch (...) {
     failed = true;  // chunks may be written: the file cannot be completed
@@ -525,8 +564,7 @@ void LasWriter::Close() {
     throw;
   }
   w.closed = true;
-  w.buffer.clear();
-  w.buffer.shrink_to_fit();
+  w.buffer.reset();
 }
 
 uint64_t LasWriter::num_points() const { return impl_->count; }

@@ -45,10 +45,14 @@ struct LasWriterOptions {
 };
 
 // A LAZ file's points ready to be appended (LasWriter::PrepareLazAppend): its full chunks, copied as stored when
-// appended, and its last, shorter chunk decoded.
+// appended, and its last, shorter chunk decoded, checked and stored as the writer's records.
 struct LazAppendPart {
   uint64_t full_chunks = 0;
-  std::vector<LasPoint> tail;                 // the last chunk's points
+  size_t tail_points = 0;                     // the last chunk's points
+  std::vector<uint8_t> tail_records;          // ... as the writer's records, one after another
+  std::array<int32_t, 3> tail_min = {};       // their stored integers' bounds (when tail_points > 0)
+  std::array<int32_t, 3> tail_max = {};
+  std::array<uint64_t, 15> tail_returns = {};    // their returns
   std::array<int32_t, 3> stored_min = {};     // the header's bounds as stored integers
   std::array<int32_t, 3> stored_max = {};
   std::array<uint64_t, 15> copied_returns = {};  // the header's returns less the tail's: the full chunks'
@@ -78,12 +82,13 @@ class LasWriter : public PointSink {
   // points and WritePoints them).
   bool AppendLaz(LasReader& reader);
   // AppendLaz in two steps, so that the files of a merge can be made ready on several threads while the writer
-  // appends earlier ones in order. PrepareLazAppend decodes `reader`'s last, shorter chunk and checks its layout
-  // against this writer's; it reads only what is fixed once set (the writer's layout, and its offset, given in the
-  // options or taken from the first points written), so with an offset in the options it may run on any thread
-  // while another appends. nullopt, having written nothing,
-  // when `reader` does not qualify. AppendLaz(reader, part) then copies `reader`'s full chunks (from its start)
-  // and writes the decoded points: the same file as AppendLaz(reader).
+  // appends earlier ones in order. PrepareLazAppend checks `reader`'s layout against this writer's, decodes its
+  // last, shorter chunk and stores those points as this writer's records (the checks and encoding WritePoints
+  // does; a point the format cannot hold throws InputError naming `reader`'s file and the point); it reads only
+  // what is fixed once set (the writer's layout, and its offset, given in the options or taken from the first
+  // points written), so with an offset in the options it may run on any thread while another appends. nullopt,
+  // having written nothing, when `reader` does not qualify. AppendLaz(reader, part) then copies `reader`'s full
+  // chunks (from its start) and the prepared records: the same file as AppendLaz(reader).
   std::optional<LazAppendPart> PrepareLazAppend(LasReader& reader) const;
   void AppendLaz(LasReader& reader, const LazAppendPart& part);
   // Patches the header, fsyncs, renames into place. Throws on I/O errors (and leaves no file at the path).
