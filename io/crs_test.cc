@@ -8,6 +8,7 @@
 
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <tbb/parallel_for.h>
 
 #include "core/error.h"
 #include "io/crs_impl.h"
@@ -447,6 +448,15 @@ TEST(CrsLabelTest, NamesWhatPROJReadsAndRefusesWhatItCannot) {
   const CrsLabel compound = LabelCrs(ParseProjectCrs("EPSG:2154+5720").impl().wkt1_las);
   EXPECT_EQ(compound.code, "EPSG:2154+5720");
   EXPECT_EQ(compound.name, "RGF93 v1 / Lambert-93 + NGF-IGN69 height");
+  EXPECT_THROW(LabelCrs("PROJCS[\"x\""), Error);
+  // Labels are kept per definition (a merge labels every tile's record): asked again, from several threads at
+  // once, the same answer; a definition PROJ cannot read fails every time.
+  std::vector<CrsLabel> again(8);
+  tbb::parallel_for(size_t{0}, again.size(), [&](size_t i) { again[i] = LabelCrs(kMontpellierWkt); });
+  for (const CrsLabel& label : again) {
+    EXPECT_EQ(label.code, montpellier.code);
+    EXPECT_EQ(label.name, montpellier.name);
+  }
   EXPECT_THROW(LabelCrs("PROJCS[\"x\""), Error);
 }
 

@@ -54,11 +54,12 @@ uint64_t MergeTileLas(const std::vector<std::string>& tile_las_paths, const std:
   const Eigen::Vector3d scale = options.scale_xyz ? *options.scale_xyz : Eigen::Vector3d::Constant(options.scale_m);
   const std::unique_ptr<PointCloudWriter> out = OpenPointCloudWriter(out_path, cloud);
   PointCloudWriter& writer = *out;
-  // A pipeline: the tiles ahead are opened and their last, partial LAZ chunks (into LAS or COPC: small tiles'
-  // points) decoded on the pool (the writer's layout and offset are fixed, PrepareLazAppend only reads them) while
-  // the writer appends the tiles before them in grid order (copying full chunks, coding the gathered last points
-  // in parallel batches), so the file is the same as a tile-by-tile merge for any thread count. At most one tile
-  // per thread plus one is held at once (each at most 65,536 decoded points, ~5 MB).
+  // A pipeline: the tiles ahead are opened and their last, partial LAZ chunks decoded and stored as the writer's
+  // records (into LAS or COPC: small tiles' points decoded) on the pool (the writer's layout and offset are fixed,
+  // PrepareLazAppend only reads them) while the writer appends the tiles before them in grid order (copying full
+  // chunks and the prepared records, coding the gathered last points in parallel batches), so the file is the same
+  // as a tile-by-tile merge for any thread count. At most one tile per thread plus one is held at once (each at
+  // most 65,536 decoded points, ~5 MB).
   const size_t tokens = static_cast<size_t>(tbb::this_task_arena::max_concurrency()) + 1;
   size_t next = 0, done = 0;
   std::vector<LasPoint> chunk;
