@@ -105,18 +105,24 @@ void CellHeights::AddInParallel(size_t count, const PointCell& point_cell) {
 std::vector<float> CellHeights::Reduce(double quantile, int min_points) {
   std::vector<float> values(window_.size(), kNoCellValue);
   tbb::parallel_sort(keys_.begin(), keys_.end());  // equal keys are equal values: the order is the serial sort's
+  // The sorted keys in ranges on the job's threads, each range's cells those whose first key lies in it (a cell's
+  // keys are contiguous, so every cell is reduced once, by one range).
   const size_t n = keys_.size();
-  for (size_t begin = 0; begin < n;) {
-    const uint64_t cell = keys_[begin] >> 32;
-    size_t end = begin + 1;
-    while (end < n && (keys_[end] >> 32) == cell) ++end;
-    const size_t count = end - begin;
-    if (static_cast<int64_t>(count) >= min_points) {
-      const size_t k = QuantilePosition(count, quantile);
-      values[cell] = FromOrderedBits(static_cast<uint32_t>(keys_[begin + k] & 0xffffffffu));
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, size_t{1} << 16), [&](const tbb::blocked_range<size_t>& r) {
+    size_t begin = r.begin();
+    while (begin > 0 && begin < n && (keys_[begin - 1] >> 32) == (keys_[begin] >> 32)) ++begin;  // the cell's start
+    while (begin < r.end()) {
+      const uint64_t cell = keys_[begin] >> 32;
+      size_t end = begin + 1;
+      while (end < n && (keys_[end] >> 32) == cell) ++end;
+      const size_t count = end - begin;
+      if (static_cast<int64_t>(count) >= min_points) {
+        const size_t k = QuantilePosition(count, quantile);
+        values[cell] = FromOrderedBits(static_cast<uint32_t>(keys_[begin + k] & 0xffffffffu));
+      }
+      begin = end;
     }
-    begin = end;
-  }
+  });
   keys_.clear();
   keys_.shrink_to_fit();
   return values;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <utility>
 
 #include "core/cell_heights.h"
 
@@ -32,7 +33,6 @@ std::vector<CellWindow> RowBands(const CellWindow& window, const std::vector<uin
 
 CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const CloudGridOptions& options) {
   CloudGrid out;
-  out.values.assign(window.size(), kNoCellValue);
   if (window.empty()) return out;
   const CellHeights locate(window);  // the cell of each point, one rule for every band
   const auto kept = [&](uint8_t c) { return !options.keep || options.keep(c); };
@@ -55,6 +55,7 @@ CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const Cloud
       }
     }
     bands = RowBands(window, per_row, options.max_points_in_memory);
+    out.values.assign(window.size(), kNoCellValue);  // filled band by band
     for (const CellWindow& band : bands) {
       uint64_t n = 0;
       for (int64_t r = band.row0; r < band.row0 + band.rows; ++r) n += per_row[static_cast<size_t>(r - window.row0)];
@@ -82,9 +83,13 @@ CloudGrid GridCloud(PointCloudFile& cloud, const CellWindow& window, const Cloud
       out.points_outside += outside.load();
     }
     out.points_gridded += heights.points();
-    const std::vector<float> v = heights.Reduce(options.quantile, options.min_points);
-    std::copy(v.begin(), v.end(),
-              out.values.begin() + static_cast<std::ptrdiff_t>(band.YOffsetIn(window) * window.cols));
+    std::vector<float> v = heights.Reduce(options.quantile, options.min_points);
+    if (bands.size() == 1) {
+      out.values = std::move(v);  // the whole window: no copy on one thread
+    } else {
+      std::copy(v.begin(), v.end(),
+                out.values.begin() + static_cast<std::ptrdiff_t>(band.YOffsetIn(window) * window.cols));
+    }
   }
   cloud.Rewind();
   return out;

@@ -1,10 +1,14 @@
 #include "io/dsm_file.h"
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
 #include <cmath>
 #include <limits>
 
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/cell_heights.h"
 #include "core/error.h"
@@ -17,13 +21,18 @@ DsmWriteStats Assemble(const CellWindow& extent, const RawCellReader& read, cons
   const auto start = std::chrono::steady_clock::now();
   DsmWriteStats stats;
   const CellFinisher finish = [&](const std::vector<float>& raw, const CellWindow& outer, const CellWindow& inner) {
+    // Raw cells with a value, counted once (in their own block), by rows on the job's threads.
     const CellWindow inside = inner.Intersection(extent);
-    for (int64_t r = 0; r < inner.rows; ++r) {  // raw cells with a value, counted once (in their own block)
-      for (int64_t c = 0; c < inner.cols; ++c) {
-        const int64_t col = inner.col0 + c, row = inner.row0 + inner.rows - 1 - r;
-        if (inside.Contains(col, row) && !std::isnan(raw[outer.Index(col, row)])) ++stats.raw_cells_with_value;
-      }
-    }
+    stats.raw_cells_with_value += tbb::parallel_reduce(
+        tbb::blocked_range<int64_t>(inside.row0, inside.row0 + inside.rows), uint64_t{0},
+        [&](const tbb::blocked_range<int64_t>& rows, uint64_t n) {
+          for (int64_t row = rows.begin(); row < rows.end(); ++row) {
+            const float* v = raw.data() + outer.Index(inside.col0, row);
+            for (int64_t c = 0; c < inside.cols; ++c) n += std::isnan(v[c]) ? 0 : 1;
+          }
+          return n;
+        },
+        std::plus<>());
     return FinishDsm(raw, outer, inner, rule, &stats.finish);
   };
   stats.assembly = AssembleRaster(extent, DsmHaloCells(rule, extent.cell_m), read, finish, format, output);
@@ -54,11 +63,11 @@ DsmWriteStats WriteDsm(const std::vector<float>& raw, const CellWindow& extent, 
   const RawCellReader read = [&](const CellWindow& w) {
     std::vector<float> out(w.size(), kNoCellValue);
     const CellWindow common = w.Intersection(extent);
-    for (int64_t row = common.row0; row < common.row0 + common.rows; ++row) {
-      for (int64_t col = common.col0; col < common.col0 + common.cols; ++col) {
-        out[w.Index(col, row)] = raw[extent.Index(col, row)];
-      }
-    }
+    if (common.empty()) return out;
+    tbb::parallel_for(common.row0, common.row0 + common.rows, [&](int64_t row) {  // rows on the job's threads
+      std::copy_n(raw.begin() + static_cast<std::ptrdiff_t>(extent.Index(common.col0, row)), common.cols,
+                  out.begin() + static_cast<std::ptrdiff_t>(w.Index(common.col0, row)));
+    });
     return out;
   };
   return Assemble(extent, read, rule, format, output);

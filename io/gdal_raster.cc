@@ -245,10 +245,16 @@ CogBuilder::CogBuilder(const std::string& path, const CellWindow& extent, const 
   impl_->format = format;
   if (!fs::path(path).parent_path().empty()) fs::create_directories(fs::path(path).parent_path());
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
-  // Fast compression: this file lives only until the COG is written.
-  CslOptions options{{"TILED", "YES"},        {"BLOCKXSIZE", "512"}, {"BLOCKYSIZE", "512"},
-                           {"COMPRESS", "DEFLATE"}, {"ZLEVEL", "1"},       {"PREDICTOR", Predictor(format.type)},
-                           {"BIGTIFF", "IF_SAFER"}, {"SPARSE_OK", "TRUE"},   {"NUM_THREADS", CompressionThreads()}};
+  // This file lives only until the COG is written: uncompressed up to kCogUncompressedBytes (no pass that
+  // compresses it and decompresses it again before the COG is coded), else fast compression.
+  CslOptions options{{"TILED", "YES"},        {"BLOCKXSIZE", "512"},   {"BLOCKYSIZE", "512"},
+                     {"BIGTIFF", "IF_SAFER"}, {"SPARSE_OK", "TRUE"}};
+  if (extent.size() * SampleBytes(format.type) * static_cast<uint64_t>(format.bands) > kCogUncompressedBytes) {
+    options.Set("COMPRESS", "DEFLATE");
+    options.Set("ZLEVEL", "1");
+    options.Set("PREDICTOR", Predictor(format.type));
+    options.Set("NUM_THREADS", CompressionThreads());
+  }
   AddColourOptions(format, &options);
   CPLErrorReset();
   impl_->dataset.reset(gtiff->Create(impl_->temp.c_str(), static_cast<int>(extent.cols), static_cast<int>(extent.rows),

@@ -45,9 +45,14 @@ size_t SampleBytes(RasterSampleType type);
 void WriteRasterFile(const std::string& path, const CellWindow& window, const RasterFormat& format,
                      const void* data, RasterLayout layout);
 
-// Builds one COG of a large extent block by block: blocks go into a temporary tiled GeoTIFF beside `path`, Finish()
-// adds the overviews and translates it into the COG at `path` (atomically); the temporary file is removed. A
-// builder destroyed before Finish() leaves nothing at `path` and removes its temporary files.
+// CogBuilder's temporary GeoTIFF is uncompressed for rasters of at most this many bytes (all bands).
+constexpr uint64_t kCogUncompressedBytes = uint64_t{64} << 20;
+
+// Builds one COG of a large extent block by block: blocks go into a temporary tiled GeoTIFF beside `path`
+// (uncompressed up to kCogUncompressedBytes, else DEFLATE level 1), Finish() adds the overviews and translates it
+// into the COG at `path` (atomically); the temporary file is removed. The COG's bytes do not depend on how the
+// temporary file was stored. A builder destroyed before Finish() leaves nothing at `path` and removes its
+// temporary files.
 class CogBuilder {
  public:
   CogBuilder(const std::string& path, const CellWindow& extent, const RasterFormat& format);

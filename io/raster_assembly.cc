@@ -3,8 +3,12 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 
 #include "core/error.h"
 
@@ -14,15 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string BlockName(const CellBlock& b) { return std::to_string(b.bx) + "_" + std::to_string(b.by) + ".tif"; }
-
-// The format's nodata value in place of NaN (float32 products carry a finite nodata value).
-void ToNodata(std::vector<float>* v, const RasterFormat& format) {
-  if (!format.nodata || std::isnan(*format.nodata)) return;
-  const float nd = static_cast<float>(*format.nodata);
-  for (float& x : *v) {
-    if (std::isnan(x)) x = nd;
-  }
-}
 
 }  // namespace
 
@@ -77,11 +72,27 @@ AssemblyStats AssembleRaster(const CellWindow& extent, int64_t halo_cells, const
   }
   const BlockMaker make = [&](const CellWindow& block, uint64_t* cells_with_value) {
     const CellWindow outer = block.Grown(halo_cells);
-    std::vector<float> values = finish(read_raw(outer), outer, block);
-    for (const float v : values) *cells_with_value += std::isnan(v) ? 0 : 1;
-    ToNodata(&values, format);
+    const std::vector<float> values = finish(read_raw(outer), outer, block);
+    // Counted, NaN turned into the nodata value and stored as the block's bytes in one pass, by ranges of cells
+    // on the job's threads.
     std::vector<uint8_t> bytes(values.size() * sizeof(float));
-    std::memcpy(bytes.data(), values.data(), bytes.size());
+    const bool to_nodata = format.nodata && !std::isnan(*format.nodata);
+    const float nodata = to_nodata ? static_cast<float>(*format.nodata) : 0.0f;
+    *cells_with_value += tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, values.size(), size_t{1} << 14), uint64_t{0},
+        [&](const tbb::blocked_range<size_t>& r, uint64_t n) {
+          for (size_t i = r.begin(); i < r.end(); ++i) {
+            float v = values[i];
+            if (std::isnan(v)) {
+              if (to_nodata) v = nodata;
+            } else {
+              ++n;
+            }
+            std::memcpy(bytes.data() + i * sizeof(float), &v, sizeof(float));
+          }
+          return n;
+        },
+        std::plus<>());
     return bytes;
   };
   return AssembleRasterBlocks(extent, make, format, output);

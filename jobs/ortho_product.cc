@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <map>
 
 #include <spdlog/spdlog.h>
 #include <tbb/blocked_range.h>
@@ -163,10 +162,10 @@ OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, co
     const std::vector<int32_t> chosen = OrthoCellViews(patch, block, selected, views, rule);
     const size_t n = block.size();
     std::vector<uint8_t> rgba(4 * n, 0);
-    std::map<int32_t, std::vector<size_t>> cells_of_view;  // by view: each image is decoded once for the block
+    std::vector<std::vector<size_t>> cells_of_view(views.size());  // by view: each image decoded once for the block
     for (size_t i = 0; i < n; ++i) {
       if (chosen[i] >= 0) {
-        cells_of_view[chosen[i]].push_back(i);
+        cells_of_view[static_cast<size_t>(chosen[i])].push_back(i);
         ++(chosen[i] == selected[i] ? out.cells_selected_view : out.cells_other_view);
       } else {
         const int64_t col = block.col0 + static_cast<int64_t>(i % block.cols);
@@ -177,13 +176,16 @@ OrthoOutcome MakeOrthoOfRun(const JobConfig& config, const DepthBlock& input, co
     // The views on the job's threads, each decoding its image and colouring its own cells; at most
     // `images_in_flight` images decoded at once. The views with the most cells first, so that no long one starts
     // last.
-    std::vector<const std::pair<const int32_t, std::vector<size_t>>*> order;
-    for (const auto& entry : cells_of_view) order.push_back(&entry);
+    std::vector<size_t> order;  // the views with cells, by index
+    for (size_t v = 0; v < cells_of_view.size(); ++v) {
+      if (!cells_of_view[v].empty()) order.push_back(v);
+    }
     std::stable_sort(order.begin(), order.end(),
-                     [](const auto* a, const auto* b) { return a->second.size() > b->second.size(); });
+                     [&](size_t a, size_t b) { return cells_of_view[a].size() > cells_of_view[b].size(); });
     std::atomic<uint64_t> coloured{0}, reads{0};
     ForEachViewInFlight(order.size(), images_in_flight, [&](size_t o) {
-      const auto& [v, cells] = *order[o];
+      const size_t v = order[o];
+      const std::vector<size_t>& cells = cells_of_view[v];
       const View& view = input.views()[v];
       const RgbImage image = input.ReadImage(view);
       ++reads;
