@@ -2,10 +2,13 @@
 // known answers.
 #include "core/cell_heights.h"
 
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <random>
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include "core/cell_window.h"
 
@@ -112,6 +115,39 @@ TEST(CellHeightsTest, OneCellsValueFromItsHeightsIsTheReducedValue) {
   EXPECT_TRUE(std::isnan(CellValueOf(&two, 0.5, 3)));
   std::vector<float> none;
   EXPECT_TRUE(std::isnan(CellValueOf(&none, 0.5, 1)));
+}
+
+// Reduce scans the sorted points in ranges on the job's threads: every cell, also one whose points straddle two
+// ranges (a cell of 200,000 points is longer than a range), gets the value its own heights give, on any thread
+// count.
+TEST(CellHeightsTest, ReducedValuesAreEachCellsOwnOnAnyThreadCount) {
+  CellWindow w;
+  w.cell_m = 1.0;
+  w.cols = 40;
+  w.rows = 30;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> xy(0.0, 40.0), z(-5.0, 50.0);
+  std::vector<std::vector<float>> per_cell(w.size());
+  std::vector<std::array<double, 3>> points;
+  for (int i = 0; i < 300000; ++i) {
+    // Most points in one cell (long runs of equal cells), the rest scattered; some cells stay empty.
+    const double x = i % 3 == 0 ? 7.5 : xy(rng), y = i % 3 == 0 ? 4.5 : std::fmod(xy(rng), 30.0);
+    if (x > 30.0 && y > 20.0) continue;
+    points.push_back({x, y, z(rng)});
+    per_cell[w.Index(CellIndexOf(x, 1.0), CellIndexOf(y, 1.0))].push_back(static_cast<float>(points.back()[2]));
+  }
+  std::vector<float> expected(w.size());
+  for (size_t c = 0; c < w.size(); ++c) expected[c] = CellValueOf(&per_cell[c], 0.5, 2);
+  for (const int threads : {1, 2, 4}) {
+    std::vector<float> got;
+    tbb::task_arena(threads).execute([&] {
+      CellHeights h(w);
+      for (const auto& p : points) h.Add(p[0], p[1], p[2]);
+      got = h.Reduce(0.5, 2);
+    });
+    ASSERT_EQ(got.size(), expected.size());
+    EXPECT_EQ(std::memcmp(got.data(), expected.data(), got.size() * sizeof(float)), 0) << threads << " threads";
+  }
 }
 
 }  // namespace
