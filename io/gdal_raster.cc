@@ -235,7 +235,8 @@ struct CogBuilder::Impl {
   bool finished = false;
 };
 
-CogBuilder::CogBuilder(const std::string& path, const CellWindow& extent, const RasterFormat& format)
+CogBuilder::CogBuilder(const std::string& path, const CellWindow& extent, const RasterFormat& format,
+                       uint64_t uncompressed_temp_bytes)
     : impl_(std::make_unique<Impl>()) {
   InitGdal();
   CheckSize(extent, path);
@@ -245,11 +246,12 @@ CogBuilder::CogBuilder(const std::string& path, const CellWindow& extent, const 
   impl_->format = format;
   if (!fs::path(path).parent_path().empty()) fs::create_directories(fs::path(path).parent_path());
   GDALDriver* gtiff = GetGDALDriverManager()->GetDriverByName("GTiff");
-  // This file lives only until the COG is written: uncompressed up to kCogUncompressedBytes (no pass that
-  // compresses it and decompresses it again before the COG is coded), else fast compression.
+  // This file lives only until the COG is written: uncompressed when small (no pass that compresses it and one
+  // that decompresses it again before the COG is coded: on one thread while GDAL's compression threads waited),
+  // else fast compression.
   CslOptions options{{"TILED", "YES"},        {"BLOCKXSIZE", "512"},   {"BLOCKYSIZE", "512"},
                      {"BIGTIFF", "IF_SAFER"}, {"SPARSE_OK", "TRUE"}};
-  if (extent.size() * SampleBytes(format.type) * static_cast<uint64_t>(format.bands) > kCogUncompressedBytes) {
+  if (extent.size() * SampleBytes(format.type) * static_cast<uint64_t>(format.bands) > uncompressed_temp_bytes) {
     options.Set("COMPRESS", "DEFLATE");
     options.Set("ZLEVEL", "1");
     options.Set("PREDICTOR", Predictor(format.type));

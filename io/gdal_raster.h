@@ -55,7 +55,9 @@ constexpr uint64_t kCogUncompressedBytes = uint64_t{64} << 20;
 // temporary files.
 class CogBuilder {
  public:
-  CogBuilder(const std::string& path, const CellWindow& extent, const RasterFormat& format);
+  // `uncompressed_temp_bytes`: the largest raster (all bands) whose temporary GeoTIFF is left uncompressed.
+  CogBuilder(const std::string& path, const CellWindow& extent, const RasterFormat& format,
+             uint64_t uncompressed_temp_bytes = kCogUncompressedBytes);
   ~CogBuilder();
   CogBuilder(const CogBuilder&) = delete;
   CogBuilder& operator=(const CogBuilder&) = delete;

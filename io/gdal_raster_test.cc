@@ -126,6 +126,37 @@ TEST(GdalRasterTest, AssemblyIntoOneCogOrBlocksWithAVrtGivesTheSameCells) {
   EXPECT_EQ(TemporaryFiles(dir.path()), 0u);
 }
 
+// CogBuilder keeps a small raster's temporary GeoTIFF uncompressed and compresses a large one's: the COG's bytes
+// (values, overviews, layout) are the same either way, and no temporary file stays.
+TEST(GdalRasterTest, CogBytesDoNotDependOnHowTheTemporaryFileWasStored) {
+  testing::TempDir dir;
+  const CellWindow extent = Window(10, -20, 1100, 700, 0.5);  // overviews of 2 and 4 (their averages cascade)
+  std::vector<float> values = Ramp(extent);
+  for (size_t i = 0; i < values.size(); i += 7) values[i] = -9999.0f;  // nodata cells left out of the averages
+  RasterFormat format;
+  format.nodata = -9999.0;
+  format.band_descriptions = {"height (m)"};
+  const CellWindow west = Window(10, -20, 512, 700, 0.5), east = Window(522, -20, 588, 700, 0.5);
+  const auto part = [&](const CellWindow& w) {
+    std::vector<float> v(w.size());
+    for (int64_t row = w.row0; row < w.row0 + w.rows; ++row) {
+      for (int64_t col = w.col0; col < w.col0 + w.cols; ++col) v[w.Index(col, row)] = values[extent.Index(col, row)];
+    }
+    return v;
+  };
+  for (const uint64_t uncompressed_up_to : {kCogUncompressedBytes, uint64_t{0}}) {
+    CogBuilder cog((dir / ("cog_" + std::to_string(uncompressed_up_to) + ".tif")).string(), extent, format,
+                   uncompressed_up_to);
+    cog.Write(west, part(west).data());
+    cog.Write(east, part(east).data());
+    cog.Finish();
+  }
+  const std::string uncompressed = ReadFileBytes(dir / ("cog_" + std::to_string(kCogUncompressedBytes) + ".tif"));
+  EXPECT_GT(uncompressed.size(), 1000u);
+  EXPECT_TRUE(uncompressed == ReadFileBytes(dir / "cog_0.tif"));
+  EXPECT_EQ(TemporaryFiles(dir.path()), 0u);
+}
+
 TEST(GdalRasterTest, UnreadableAndMissingFilesAreInputErrors) {
   testing::TempDir dir;
   std::FILE* f = std::fopen((dir / "junk.tif").c_str(), "wb");
