@@ -151,9 +151,10 @@ TEST(GdalRasterTest, CogBytesDoNotDependOnHowTheTemporaryFileWasStored) {
     cog.Write(east, part(east).data());
     cog.Finish();
   }
-  const std::string uncompressed = ReadFileBytes(dir / ("cog_" + std::to_string(kCogUncompressedBytes) + ".tif"));
+  const std::string uncompressed =
+      testing::ReadFileBytes(dir / ("cog_" + std::to_string(kCogUncompressedBytes) + ".tif"));
   EXPECT_GT(uncompressed.size(), 1000u);
-  EXPECT_TRUE(uncompressed == ReadFileBytes(dir / "cog_0.tif"));
+  EXPECT_TRUE(uncompressed == testing::ReadFileBytes(dir / "cog_0.tif"));
   EXPECT_EQ(TemporaryFiles(dir.path()), 0u);
 }
 
