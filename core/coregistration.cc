@@ -257,13 +257,28 @@ int CoregistrationDecimation(int width, int height, int max_pixels) {
   return k;
 }
 
-DepthMap DecimateDepth(const DepthMap& depth, int k) {
-  DepthMap out(depth.width / k, depth.height / k, 1, 0.0f);
+std::vector<int> DecimatedRows(int height, int k) {
+  std::vector<int> rows;
+  for (int r = 0; r < height / k; ++r) rows.push_back(k * r + (k - 1) / 2);
+  return rows;
+}
+
+DepthMap DecimateDepthRows(const DepthMap& rows, int k) {
+  DepthMap out(rows.width / k, rows.height, 1, 0.0f);
   const int offset = (k - 1) / 2;
   for (int r = 0; r < out.height; ++r) {
-    for (int c = 0; c < out.width; ++c) out.at(r, c) = depth.at(k * r + offset, k * c + offset);
+    for (int c = 0; c < out.width; ++c) out.at(r, c) = rows.at(r, k * c + offset);
   }
   return out;
+}
+
+DepthMap DecimateDepth(const DepthMap& depth, int k) {
+  const std::vector<int> rows = DecimatedRows(depth.height, k);
+  DepthMap picked(depth.width, static_cast<int>(rows.size()), 1, 0.0f);
+  for (size_t r = 0; r < rows.size(); ++r) {
+    std::copy_n(&depth.at(rows[r], 0), depth.width, &picked.at(static_cast<int>(r), 0));
+  }
+  return DecimateDepthRows(picked, k);
 }
 
 CoregistrationResult Coregister(const std::vector<CoregistrationInput>& inputs, const CoregistrationOptions& o) {

@@ -50,6 +50,11 @@ int CoregistrationDecimation(int width, int height, int max_pixels);
 // Every k-th pixel of `depth` (k odd): pixel (r, c) of the result is pixel (k r + (k-1)/2, k c + (k-1)/2), whose
 // centre is k times the result pixel's centre, so the result's camera is the depth raster's scaled by 1/k exactly.
 DepthMap DecimateDepth(const DepthMap& depth, int k);
+// The rows of a raster `height` rows high that DecimateDepth keeps: k r + (k-1)/2 for r < height / k. A reader
+// that can read rows alone reads only these (DepthBlock::ReadDepthRows), 1 / k of the map.
+std::vector<int> DecimatedRows(int height, int k);
+// DecimateDepth of a raster of which `rows` holds only the rows DecimatedRows(height, k), in that order.
+DepthMap DecimateDepthRows(const DepthMap& rows, int k);
 
 // One view as co-registration sees it.
 struct CoregistrationInput {

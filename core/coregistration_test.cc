@@ -220,6 +220,26 @@ TEST(CoregistrationTest, DecimationKeepsPixelCentres) {
   EXPECT_EQ(d.at(0, 1), 14.0f);
 }
 
+TEST(CoregistrationTest, DecimatingTheKeptRowsAloneGivesTheSameRaster) {
+  DepthMap depth(47, 38, 1, 0.0f);
+  for (size_t i = 0; i < depth.data.size(); ++i) depth.data[i] = static_cast<float>(i % 101) * 0.5f;
+  for (const int k : {1, 3, 5, 15}) {
+    SCOPED_TRACE(k);
+    const std::vector<int> rows = DecimatedRows(depth.height, k);
+    ASSERT_EQ(rows.size(), static_cast<size_t>(depth.height / k));
+    DepthMap kept(depth.width, static_cast<int>(rows.size()), 1, 0.0f);
+    for (size_t r = 0; r < rows.size(); ++r) {
+      for (int c = 0; c < depth.width; ++c) kept.at(static_cast<int>(r), c) = depth.at(rows[r], c);
+    }
+    const DepthMap whole = DecimateDepth(depth, k);
+    const DepthMap from_rows = DecimateDepthRows(kept, k);
+    ASSERT_EQ(from_rows.width, depth.width / k);
+    ASSERT_EQ(from_rows.height, depth.height / k);
+    EXPECT_EQ(from_rows.data, whole.data);
+    if (k == 3) EXPECT_EQ(whole.at(2, 4), depth.at(7, 13));  // pixel (k r + 1, k c + 1)
+  }
+}
+
 TEST(CoregistrationTest, RejectsBadOptions) {
   CoregistrationOptions o;
   o.iterations = 0;

@@ -159,7 +159,7 @@ Raster<float> ReadColmapArrayRows(const std::string& path, int row_begin, int ro
                                ") are outside the array's " + std::to_string(shape.height) + " rows");
   }
   const int rows = row_end - row_begin;
-  Raster<float> out(shape.width, rows, shape.channels);
+  Raster<float> out = Raster<float>::Uninitialized(shape.width, rows, shape.channels);  // every value read below
   if (rows == 0) return out;
   std::ifstream in = OpenForReading(path);
   const uint64_t plane_floats = static_cast<uint64_t>(shape.width) * shape.height;
@@ -170,9 +170,14 @@ Raster<float> ReadColmapArrayRows(const std::string& path, int row_begin, int ro
     for (int r0 = 0; r0 < rows; r0 += rows_per_block) {
       const int n_rows = std::min(rows_per_block, rows - r0);
       const size_t n = static_cast<size_t>(n_rows) * shape.width;
-      plane.resize(n);
       const uint64_t offset = shape.data_offset +
                               (c * plane_floats + static_cast<uint64_t>(row_begin + r0) * shape.width) * sizeof(float);
+      if (shape.channels == 1) {  // the plane is the raster: read in place
+        float* dst = out.data.data() + static_cast<size_t>(r0) * shape.width;
+        ReadExactly(in, path, reinterpret_cast<char*>(dst), n * sizeof(float), offset);
+        continue;
+      }
+      plane.resize(n);
       ReadExactly(in, path, reinterpret_cast<char*>(plane.data()), n * sizeof(float), offset);
       ScatterPlane(plane, c, r0, n_rows, &out);
     }
@@ -186,7 +191,7 @@ Raster<float> ReadColmapArrayWindow(const std::string& path, const PixelWindow& 
     throw Error(path + ": window " + PixelWindowText(window) + " is not inside the array's " +
                 std::to_string(shape.width) + "x" + std::to_string(shape.height) + " pixels");
   }
-  Raster<float> out(window.width(), window.height(), shape.channels);
+  Raster<float> out = Raster<float>::Uninitialized(window.width(), window.height(), shape.channels);  // all read
   std::ifstream in = OpenForReading(path);
   const uint64_t plane_floats = static_cast<uint64_t>(shape.width) * shape.height;
   std::vector<float> row(static_cast<size_t>(window.width()));
@@ -197,6 +202,29 @@ Raster<float> ReadColmapArrayWindow(const std::string& path, const PixelWindow& 
                                static_cast<uint64_t>(window.col_begin)) * sizeof(float);
       ReadExactly(in, path, reinterpret_cast<char*>(row.data()), row.size() * sizeof(float), offset);
       ScatterPlane(row, c, r, 1, &out);
+    }
+  }
+  return out;
+}
+
+Raster<float> ReadColmapArrayRowList(const std::string& path, const std::vector<int>& rows) {
+  const ColmapArrayShape shape = ReadColmapArrayShape(path);
+  for (const int r : rows) {
+    if (r < 0 || r >= shape.height) {
+      throw Error(path + ": row " + std::to_string(r) + " is outside the array's " + std::to_string(shape.height) +
+                  " rows");
+    }
+  }
+  Raster<float> out = Raster<float>::Uninitialized(shape.width, static_cast<int>(rows.size()), shape.channels);
+  std::ifstream in = OpenForReading(path);
+  const uint64_t plane_floats = static_cast<uint64_t>(shape.width) * shape.height;
+  std::vector<float> row(static_cast<size_t>(shape.width));
+  for (int c = 0; c < shape.channels; ++c) {
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const uint64_t offset =
+          shape.data_offset + (c * plane_floats + static_cast<uint64_t>(rows[i]) * shape.width) * sizeof(float);
+      ReadExactly(in, path, reinterpret_cast<char*>(row.data()), row.size() * sizeof(float), offset);
+      ScatterPlane(row, c, static_cast<int>(i), 1, &out);
     }
   }
   return out;

@@ -25,6 +25,10 @@ Raster<float> ReadColmapArrayRows(const std::string& path, int row_begin, int ro
 // The pixels of `window`, every channel (one seek + read per row and channel, so a narrow window of a wide map
 // reads only its columns). Throws InputError for a bad file, Error for a window outside the array.
 Raster<float> ReadColmapArrayWindow(const std::string& path, const PixelWindow& window);
+// The rows `rows` (each in [0, height), any order) at full width, every channel: row i of the result is rows[i]
+// of the array. One seek + read per row and channel, so every k-th row reads 1 / k of the file. Throws InputError
+// for a bad file, Error for a row outside the array.
+Raster<float> ReadColmapArrayRowList(const std::string& path, const std::vector<int>& rows);
 // Writes atomically (temporary name, fsync, rename).
 void WriteColmapArray(const std::string& path, const Raster<float>& raster);
 

@@ -168,6 +168,28 @@ TEST(ColmapArrayTest, WindowsEqualTheCropOfTheFullRead) {
   }
 }
 
+TEST(ColmapArrayTest, RowListsEqualTheRowsOfTheFullRead) {
+  TempDir tmp;
+  for (const int channels : {1, 3}) {
+    const Raster<float> written = RandomRaster(9, 7, channels);
+    const std::string path = (tmp / ("l" + std::to_string(channels) + ".bin")).string();
+    WriteColmapArray(path, written);
+    for (const std::vector<int>& rows : {std::vector<int>{1, 4}, std::vector<int>{6, 0, 6}, std::vector<int>{}}) {
+      const Raster<float> got = ReadColmapArrayRowList(path, rows);
+      ASSERT_EQ(got.width, 9);
+      ASSERT_EQ(got.height, static_cast<int>(rows.size()));
+      ASSERT_EQ(got.channels, channels);
+      for (size_t i = 0; i < rows.size(); ++i) {
+        for (int col = 0; col < 9; ++col) {
+          for (int c = 0; c < channels; ++c) ASSERT_EQ(got.at(static_cast<int>(i), col, c), written.at(rows[i], col, c));
+        }
+      }
+    }
+    EXPECT_THROW(ReadColmapArrayRowList(path, {0, 7}), Error);
+    EXPECT_THROW(ReadColmapArrayRowList(path, {-1}), Error);
+  }
+}
+
 TEST(ColmapArrayTest, TruncatedFile) {
   TempDir tmp;
   const std::string path = WriteBytes(tmp, "t.bin", "3&2&1&" + FloatBytes({1, 2, 3, 4, 5}).substr(0, 18));

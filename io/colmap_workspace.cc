@@ -306,6 +306,21 @@ DepthMap ColmapWorkspace::ReadDepthWindow(const View& view, const PixelWindow& w
   return ReadColmapArrayWindow(DepthMapPath(view), window);
 }
 
+DepthMap ColmapWorkspace::ReadDepthRows(const View& view, const std::vector<int>& rows) const {
+  // A map that ReadDepthMap refuses goes through it, so that it is refused with the same message.
+  const std::string path = DepthMapPath(view);
+  ColmapArrayShape shape;
+  try {
+    shape = ReadColmapArrayShape(path);
+  } catch (const InputError&) {
+    return DepthBlock::ReadDepthRows(view, rows);
+  }
+  if (shape.channels != 1 || !SizeMatchesAspect(shape.width, shape.height, view.camera.width, view.camera.height)) {
+    return DepthBlock::ReadDepthRows(view, rows);
+  }
+  return ReadColmapArrayRowList(path, rows);
+}
+
 std::vector<double> ColmapWorkspace::SceneHeights() const {
   std::vector<double> z;
   z.reserve(model_.points3D.size());

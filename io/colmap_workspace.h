@@ -41,6 +41,7 @@ class ColmapWorkspace : public DepthBlock {
   DepthRasterSize DepthSize(const View& view) const override;
   DepthMap ReadDepthMap(const View& view) const override;
   DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override;
+  DepthMap ReadDepthRows(const View& view, const std::vector<int>& rows) const override;
   NormalMap ReadNormalMap(const View& view) const;
   RgbImage ReadImage(const View& view) const override;
   // z of the sparse model's points; a model without points (an empty points3D file) gives a sample of the depth

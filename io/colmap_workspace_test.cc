@@ -238,6 +238,14 @@ TEST(ColmapWorkspaceTest, ReadsRasters) {
   ASSERT_EQ(depth.height, 6);
   ASSERT_EQ(depth.channels, 1);
   EXPECT_EQ(depth.at(3, 5), 100.0f + 20.0f + 3.0f + 0.5f);
+  // Rows alone (co-registration's decimated read): the same values as the whole map's rows.
+  const DepthMap rows = ws.ReadDepthRows(v2, {3, 0});
+  ASSERT_EQ(rows.width, 8);
+  ASSERT_EQ(rows.height, 2);
+  for (int col = 0; col < 8; ++col) {
+    EXPECT_EQ(rows.at(0, col), depth.at(3, col));
+    EXPECT_EQ(rows.at(1, col), depth.at(0, col));
+  }
   const NormalMap normal = ws.ReadNormalMap(v2);
   ASSERT_EQ(normal.channels, 3);
   EXPECT_EQ(normal.at(4, 7, 0), 2.0f);
@@ -269,16 +277,19 @@ TEST(ColmapWorkspaceTest, MisSizedOrMisShapedMapsAreRejected) {
   const View& v = ws.views()[1];  // nadir/img0.png, 8x6
   WriteColmapArray(ws.DepthMapPath(v), DepthFor(0, 8, 3));  // wrong aspect
   ExpectInputError([&] { ws.ReadDepthMap(v); }, {ws.DepthMapPath(v), "nadir/img0.png", "8x3"});
+  ExpectInputError([&] { ws.ReadDepthRows(v, {0}); }, {ws.DepthMapPath(v), "nadir/img0.png", "8x3"});
   WriteColmapArray(ws.DepthMapPath(v), DepthFor(0, 16, 12));  // larger than the image
   ExpectInputError([&] { ws.ReadDepthMap(v); }, {ws.DepthMapPath(v), "nadir/img0.png"});
   WriteColmapArray(ws.DepthMapPath(v), DepthFor(0, 5, 4));  // 0.625 / 0.667: within 1 px of rounding
   EXPECT_EQ(ws.ReadDepthMap(v).width, 5);
   WriteColmapArray(ws.DepthMapPath(v), NormalFor(0, 8, 6));  // 3 channels where 1 is expected
   ExpectInputError([&] { ws.ReadDepthMap(v); }, {ws.DepthMapPath(v), "nadir/img0.png", "3 channels"});
+  ExpectInputError([&] { ws.ReadDepthRows(v, {0}); }, {ws.DepthMapPath(v), "nadir/img0.png", "3 channels"});
   WriteColmapArray(ws.NormalMapPath(v), DepthFor(0, 8, 6));
   ExpectInputError([&] { ws.ReadNormalMap(v); }, {ws.NormalMapPath(v), "nadir/img0.png", "1 channels"});
   WriteFile(ws.DepthMapPath(v), "8&6&1&");  // truncated: the image is named too
   ExpectInputError([&] { ws.ReadDepthMap(v); }, {ws.DepthMapPath(v), "nadir/img0.png", "truncated"});
+  ExpectInputError([&] { ws.ReadDepthRows(v, {0}); }, {ws.DepthMapPath(v), "nadir/img0.png", "truncated"});
 }
 
 TEST(ColmapWorkspaceTest, MissingOrBadFilesNameFileAndImage) {

@@ -12,6 +12,21 @@ ConsistencyGraph DepthBlock::ReadConsistencyGraph(const View& view) const {
   throw InputError(source(), "this input has no dense-matching consistency graphs (view \"" + view.name + "\")");
 }
 
+DepthMap DepthBlock::ReadDepthRows(const View& view, const std::vector<int>& rows) const {
+  const DepthMap full = ReadDepthMap(view);
+  DepthMap out = DepthMap::Uninitialized(full.width, static_cast<int>(rows.size()), full.channels);
+  const size_t row_values = static_cast<size_t>(full.width) * full.channels;
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i] < 0 || rows[i] >= full.height) {
+      throw Error(DepthMapPath(view) + ": row " + std::to_string(rows[i]) + " is outside the depth map's " +
+                  std::to_string(full.height) + " rows");
+    }
+    std::copy_n(full.data.data() + static_cast<size_t>(rows[i]) * row_values, row_values,
+                out.data.data() + i * row_values);
+  }
+  return out;
+}
+
 std::vector<double> SampleDepthMapHeights(const DepthBlock& input) {
   constexpr int kRows = 16, kColumns = 64;
   std::vector<double> z;

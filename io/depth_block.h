@@ -40,6 +40,10 @@ class DepthBlock {
   virtual DepthMap ReadDepthMap(const View& view) const = 0;
   // Rows and columns of `window` only (must fit in the raster); reads no more of the file than it needs to.
   virtual DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const = 0;
+  // The rows `rows` (each in [0, height)) at full width: row i of the result is rows[i] of the map (co-registration
+  // reads every k-th row). Checked like ReadDepthMap. This default reads the whole map; a format that can read
+  // rows alone (COLMAP's arrays) reads only those.
+  virtual DepthMap ReadDepthRows(const View& view, const std::vector<int>& rows) const;
   // The view's image (RGB, full resolution), or an empty raster when the input has no images (points then get
   // no colour).
   virtual RgbImage ReadImage(const View& view) const = 0;

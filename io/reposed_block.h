@@ -29,6 +29,9 @@ class ReposedBlock : public DepthBlock {
   DepthMap ReadDepthWindow(const View& view, const PixelWindow& window) const override {
     return inner_->ReadDepthWindow(Inner(view), window);
   }
+  DepthMap ReadDepthRows(const View& view, const std::vector<int>& rows) const override {
+    return inner_->ReadDepthRows(Inner(view), rows);
+  }
   RgbImage ReadImage(const View& view) const override { return inner_->ReadImage(Inner(view)); }
   std::vector<double> SceneHeights() const override;
   std::string SceneHeightsSource() const override { return inner_->SceneHeightsSource(); }

@@ -41,7 +41,8 @@ RgbImage ReadRgbImageFile(const std::string& path, const std::string& who, int e
                                " but its camera is " + std::to_string(expected_width) + "x" +
                                std::to_string(expected_height) + for_who);
   }
-  RgbImage rgb(bgr.cols, bgr.rows, 3);
+  // OpenCV's BGR to RGB; every value is written here, so the raster is not zero-filled first.
+  RgbImage rgb = RgbImage::Uninitialized(bgr.cols, bgr.rows, 3);
   for (int row = 0; row < bgr.rows; ++row) {
     const uint8_t* src = bgr.ptr<uint8_t>(row);
     uint8_t* dst = &rgb.at(row, 0, 0);

@@ -36,18 +36,19 @@ nlohmann::json OptionsJson(const JobConfig& config) {
   return j;
 }
 
-// Each view's depth map read once and decimated, with the camera of the decimated raster.
+// Each view's depth map decimated, with the camera of the decimated raster.
 std::vector<CoregistrationInput> ReadDecimated(const DepthBlock& input, const CoregistrationOptions& o,
                                                int* max_decimation) {
   const std::vector<View>& views = input.views();
   std::vector<CoregistrationInput> out(views.size());
   std::vector<int> factor(views.size(), 1);
   tbb::parallel_for(size_t{0}, views.size(), [&](size_t i) {
-    const DepthMap full = input.ReadDepthMap(views[i]);
-    const int k = CoregistrationDecimation(full.width, full.height, o.max_pixels_per_view);
-    const PinholeCamera cam = views[i].camera.Scaled(full.width, full.height);
+    const DepthRasterSize size = input.DepthSize(views[i]);
+    const int k = CoregistrationDecimation(size.width, size.height, o.max_pixels_per_view);
+    const PinholeCamera cam = views[i].camera.Scaled(size.width, size.height);
     out[i].view = views[i];
-    out[i].depth = DecimateDepth(full, k);
+    // Only the rows the decimation keeps are read (1 / k of each map where the format allows it).
+    out[i].depth = DecimateDepthRows(input.ReadDepthRows(views[i], DecimatedRows(size.height, k)), k);
     out[i].depth_camera = {out[i].depth.width, out[i].depth.height, cam.fx / k, cam.fy / k, cam.cx / k, cam.cy / k};
     factor[i] = k;
   }, tbb::simple_partitioner());
