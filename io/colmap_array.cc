@@ -67,6 +67,25 @@ void ScatterPlane(const std::vector<float>& plane, int channel, int row0, int ro
   for (size_t i = 0; i < n; ++i) dst[i * out->channels] = plane[i];
 }
 
+// Columns [col_begin, col_begin + width) of each of `rows` (checked by the caller), every channel: row i of the
+// result is rows[i]. One seek + read per row and channel; windows and row lists both read through here.
+Raster<float> ReadRowSpans(const std::string& path, const ColmapArrayShape& shape, const std::vector<int>& rows,
+                           int col_begin, int width) {
+  Raster<float> out = Raster<float>::Uninitialized(width, static_cast<int>(rows.size()), shape.channels);  // all read
+  std::ifstream in = OpenForReading(path);
+  const uint64_t plane_floats = static_cast<uint64_t>(shape.width) * shape.height;
+  std::vector<float> row(static_cast<size_t>(width));
+  for (int c = 0; c < shape.channels; ++c) {
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const uint64_t offset = shape.data_offset + (c * plane_floats + static_cast<uint64_t>(rows[i]) * shape.width +
+                                                   static_cast<uint64_t>(col_begin)) * sizeof(float);
+      ReadExactly(in, path, reinterpret_cast<char*>(row.data()), row.size() * sizeof(float), offset);
+      ScatterPlane(row, c, static_cast<int>(i), 1, &out);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 ColmapArrayShape ReadColmapArrayShape(const std::string& path) {
@@ -191,20 +210,9 @@ Raster<float> ReadColmapArrayWindow(const std::string& path, const PixelWindow& 
     throw Error(path + ": window " + PixelWindowText(window) + " is not inside the array's " +
                 std::to_string(shape.width) + "x" + std::to_string(shape.height) + " pixels");
   }
-  Raster<float> out = Raster<float>::Uninitialized(window.width(), window.height(), shape.channels);  // all read
-  std::ifstream in = OpenForReading(path);
-  const uint64_t plane_floats = static_cast<uint64_t>(shape.width) * shape.height;
-  std::vector<float> row(static_cast<size_t>(window.width()));
-  for (int c = 0; c < shape.channels; ++c) {
-    for (int r = 0; r < window.height(); ++r) {
-      const uint64_t offset =
-          shape.data_offset + (c * plane_floats + static_cast<uint64_t>(window.row_begin + r) * shape.width +
-                               static_cast<uint64_t>(window.col_begin)) * sizeof(float);
-      ReadExactly(in, path, reinterpret_cast<char*>(row.data()), row.size() * sizeof(float), offset);
-      ScatterPlane(row, c, r, 1, &out);
-    }
-  }
-  return out;
+  std::vector<int> rows(static_cast<size_t>(window.height()));
+  for (int r = 0; r < window.height(); ++r) rows[static_cast<size_t>(r)] = window.row_begin + r;
+  return ReadRowSpans(path, shape, rows, window.col_begin, window.width());
 }
 
 Raster<float> ReadColmapArrayRowList(const std::string& path, const std::vector<int>& rows) {
@@ -215,19 +223,7 @@ Raster<float> ReadColmapArrayRowList(const std::string& path, const std::vector<
                   " rows");
     }
   }
-  Raster<float> out = Raster<float>::Uninitialized(shape.width, static_cast<int>(rows.size()), shape.channels);
-  std::ifstream in = OpenForReading(path);
-  const uint64_t plane_floats = static_cast<uint64_t>(shape.width) * shape.height;
-  std::vector<float> row(static_cast<size_t>(shape.width));
-  for (int c = 0; c < shape.channels; ++c) {
-    for (size_t i = 0; i < rows.size(); ++i) {
-      const uint64_t offset =
-          shape.data_offset + (c * plane_floats + static_cast<uint64_t>(rows[i]) * shape.width) * sizeof(float);
-      ReadExactly(in, path, reinterpret_cast<char*>(row.data()), row.size() * sizeof(float), offset);
-      ScatterPlane(row, c, static_cast<int>(i), 1, &out);
-    }
-  }
-  return out;
+  return ReadRowSpans(path, shape, rows, 0, shape.width);
 }
 
 void WriteColmapArray(const std::string& path, const Raster<float>& raster) {
