@@ -114,6 +114,21 @@ Raster<float> RandomRaster(int w, int h, int c) {
   return r;
 }
 
+// Every value of `got` equals expected(row, col, channel); stops at the first difference.
+template <typename Expected>
+void ExpectValues(const Raster<float>& got, Expected expected) {
+  for (int row = 0; row < got.height; ++row) {
+    for (int col = 0; col < got.width; ++col) {
+      for (int c = 0; c < got.channels; ++c) {
+        if (got.at(row, col, c) == expected(row, col, c)) continue;
+        ADD_FAILURE() << "at row " << row << ", col " << col << ", channel " << c << ": " << got.at(row, col, c)
+                      << " != " << expected(row, col, c);
+        return;
+      }
+    }
+  }
+}
+
 TEST(ColmapArrayTest, RoundTripAndRowsEqualSliceOfFullRead) {
   TempDir tmp;
   for (const int channels : {1, 3}) {
@@ -127,13 +142,7 @@ TEST(ColmapArrayTest, RoundTripAndRowsEqualSliceOfFullRead) {
       ASSERT_EQ(rows.width, 9);
       ASSERT_EQ(rows.height, end - begin);
       ASSERT_EQ(rows.channels, channels);
-      for (int row = begin; row < end; ++row) {
-        for (int col = 0; col < 9; ++col) {
-          for (int c = 0; c < channels; ++c) {
-            ASSERT_EQ(rows.at(row - begin, col, c), full.at(row, col, c)) << row << "," << col << "," << c;
-          }
-        }
-      }
+      ExpectValues(rows, [&](int row, int col, int c) { return full.at(begin + row, col, c); });
     }
     EXPECT_THROW(ReadColmapArrayRows(path, 5, 8), InputError);
     EXPECT_THROW(ReadColmapArrayRows(path, -1, 2), InputError);
@@ -154,13 +163,7 @@ TEST(ColmapArrayTest, WindowsEqualTheCropOfTheFullRead) {
       ASSERT_EQ(win.width, w.width());
       ASSERT_EQ(win.height, w.height());
       ASSERT_EQ(win.channels, channels);
-      for (int r = 0; r < w.height(); ++r) {
-        for (int col = 0; col < w.width(); ++col) {
-          for (int c = 0; c < channels; ++c) {
-            ASSERT_EQ(win.at(r, col, c), written.at(w.row_begin + r, w.col_begin + col, c));
-          }
-        }
-      }
+      ExpectValues(win, [&](int r, int col, int c) { return written.at(w.row_begin + r, w.col_begin + col, c); });
     }
     EXPECT_THROW(ReadColmapArrayWindow(path, PixelWindow{0, 8, 0, 9}), Error);
     EXPECT_THROW(ReadColmapArrayWindow(path, PixelWindow{0, 7, 5, 10}), Error);
@@ -179,11 +182,7 @@ TEST(ColmapArrayTest, RowListsEqualTheRowsOfTheFullRead) {
       ASSERT_EQ(got.width, 9);
       ASSERT_EQ(got.height, static_cast<int>(rows.size()));
       ASSERT_EQ(got.channels, channels);
-      for (size_t i = 0; i < rows.size(); ++i) {
-        for (int col = 0; col < 9; ++col) {
-          for (int c = 0; c < channels; ++c) ASSERT_EQ(got.at(static_cast<int>(i), col, c), written.at(rows[i], col, c));
-        }
-      }
+      ExpectValues(got, [&](int i, int col, int c) { return written.at(rows[i], col, c); });
     }
     EXPECT_THROW(ReadColmapArrayRowList(path, {0, 7}), Error);
     EXPECT_THROW(ReadColmapArrayRowList(path, {-1}), Error);
