@@ -2,6 +2,9 @@
 #include "core/depth_normals.h"
 
 #include <cmath>
+#include <vector>
+
+#include <tbb/parallel_for.h>
 
 #include <gtest/gtest.h>
 
@@ -48,6 +51,41 @@ TEST(DepthNormalsTest, DepthStepsDoNotTiltTheNormalsOfEitherSide) {
     EXPECT_GT(NormalAt(normals, 45, col).z(), 0.9999) << "column " << col;
   }
   EXPECT_EQ(NormalAt(normals, 30, 30).squaredNorm(), 0.0);
+}
+
+TEST(DepthNormalsTest, LazyNormalsEqualTheWholeMapBitForBitWhenReadFromManyThreads) {
+  // A tilted plane with a roof step and invalid pixels, the normals in a rotated world frame.
+  View view = NadirView(0, kEast, kNorth, 500.0);
+  view.cam_from_world.rotation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1, 2, 3).normalized())) *
+                                 view.cam_from_world.rotation;
+  DepthMap depth = testing::TiltedPlaneDepth(NadirView(0, kEast, kNorth, 500.0), kGroundZ, kEast, 0.4);
+  for (int r = 20; r < 50; ++r) {
+    for (int c = 40; c < 90; ++c) depth.at(r, c) -= 15.0f;
+  }
+  for (int k = 0; k < 200; ++k) depth.at((k * 37) % depth.height, (k * 53) % depth.width) = 0.0f;
+  const SacView sv = MakeSacView(view, &depth, nullptr, nullptr);
+  const NormalMap whole = PlaneFitNormalsInWorld(sv, 1);
+  const LazyPlaneFitNormals lazy(sv, 1);
+  const int pixels = depth.width * depth.height;
+  // Every pixel asked for three times, by interleaved threads and in a scattered order, so that a pixel is often
+  // asked for again while or after another thread stored it.
+  std::vector<Eigen::Vector3f> got(3 * static_cast<size_t>(pixels));
+  tbb::parallel_for(0, 3 * pixels, [&](int k) {
+    const int i = static_cast<int>((static_cast<int64_t>(k) * 7919) % pixels);
+    got[static_cast<size_t>(k)] = lazy.At(i / depth.width, i % depth.width);
+  });
+  int zero = 0;
+  for (int k = 0; k < 3 * pixels; ++k) {
+    const int i = static_cast<int>((static_cast<int64_t>(k) * 7919) % pixels);
+    const int row = i / depth.width, col = i % depth.width;
+    for (int c = 0; c < 3; ++c) {
+      ASSERT_EQ(got[static_cast<size_t>(k)][c], whole.at(row, col, c)) << "pixel " << row << "," << col << " ask " << k;
+    }
+    zero += got[static_cast<size_t>(k)].squaredNorm() == 0.0f;
+  }
+  EXPECT_GE(zero, 3 * 200);  // the invalid pixels have none
+  EXPECT_LT(zero, 3 * pixels / 10);
+  EXPECT_NEAR(lazy.At(30, 60).norm(), 1.0f, 1e-6f);  // on the roof: a unit normal
 }
 
 }  // namespace

@@ -77,15 +77,23 @@ bool SuperpixelLabels::BuildPalettes(const std::vector<int32_t>& labels) {
       palette_begin[br * blocks_per_row_ + bc] = begin;
       const int row_end = std::min(height_, static_cast<int>(br + 1) * kBlockPx);
       const int col_end = std::min(width_, static_cast<int>(bc + 1) * kBlockPx);
+      // Most pixels repeat the label before them: that one's index is reused without a search.
+      int32_t last_label = 0;
+      size_t last_index = kMaxPaletteLabels;  // none yet in this block
       for (int r = static_cast<int>(br) * kBlockPx; r < row_end; ++r) {
         for (int c = static_cast<int>(bc) * kBlockPx; c < col_end; ++c) {
           const size_t i = static_cast<size_t>(r) * static_cast<size_t>(width_) + static_cast<size_t>(c);
-          const auto first = palette.begin() + begin;
-          const auto found = std::find(first, palette.end(), labels[i]);
-          const size_t index = static_cast<size_t>(found - first);
-          if (found == palette.end()) {
-            if (index == kMaxPaletteLabels) return false;
-            palette.push_back(labels[i]);
+          size_t index = last_index;
+          if (index == kMaxPaletteLabels || labels[i] != last_label) {
+            const auto first = palette.begin() + begin;
+            const auto found = std::find(first, palette.end(), labels[i]);
+            index = static_cast<size_t>(found - first);
+            if (found == palette.end()) {
+              if (index == kMaxPaletteLabels) return false;
+              palette.push_back(labels[i]);
+            }
+            last_label = labels[i];
+            last_index = index;
           }
           indices[i / 2] = static_cast<uint8_t>(indices[i / 2] | (index << ((i % 2) * 4)));
         }
@@ -101,9 +109,19 @@ bool SuperpixelLabels::BuildPalettes(const std::vector<int32_t>& labels) {
 
 void SuperpixelLabels::CopyRow(int row, int32_t* out) const {
   switch (storage_) {
-    case Storage::kPalette:
-      for (int c = 0; c < width_; ++c) out[c] = at(row, c);
+    case Storage::kPalette: {  // at(), one block's palette at a time
+      const size_t first = static_cast<size_t>(row) * static_cast<size_t>(width_);
+      const uint32_t* block_begin = palette_begin_.data() + static_cast<size_t>(row / kBlockPx) * blocks_per_row_;
+      for (int c0 = 0; c0 < width_; c0 += kBlockPx) {
+        const int32_t* palette = palette_.data() + block_begin[c0 / kBlockPx];
+        const int c1 = std::min(width_, c0 + kBlockPx);
+        for (int c = c0; c < c1; ++c) {
+          const size_t i = first + static_cast<size_t>(c);
+          out[c] = palette[(indices_[i / 2] >> ((i % 2) * 4)) & 0xF];
+        }
+      }
       return;
+    }
     case Storage::kBanded: {
       const uint32_t base = band_base_[static_cast<size_t>(row / kBandRows)];
       const uint16_t* offsets = offsets_.data() + static_cast<size_t>(row) * width_;
