@@ -22,6 +22,18 @@ TEST(CellWindowTest, CellsAreHalfOpenMultiplesOfTheCellAndRasterRowsRunSouth) {
   EXPECT_EQ(CellIndexOf(-0.0001, 0.5), -1);
   EXPECT_EQ(CellIndexOf(770500.3, 0.1), 7705003);  // 0.1 is not exact in binary: the edge formula decides
   EXPECT_LE(CellEdge(7705003, 0.1), 770500.3);
+  // Any coordinate, either sign, on lattices that are and are not exact in binary: the cell whose edges hold it.
+  uint64_t state = 12345;
+  for (const double cell : {0.1, 0.25, 0.3, 1.0, 7.3}) {
+    for (int i = 0; i < 20000; ++i) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      const double v = (static_cast<double>(state >> 11) / 9007199254740992.0 - 0.5) * 2e6 * (i % 2 ? 1.0 : 1e-5);
+      const int64_t k = CellIndexOf(v, cell);
+      ASSERT_LE(CellEdge(k, cell), v) << v << " in cells of " << cell;
+      ASSERT_GT(CellEdge(k + 1, cell), v) << v << " in cells of " << cell;
+    }
+    EXPECT_EQ(CellIndexOf(CellEdge(-7, cell), cell), -7);  // an edge belongs to the cell it starts
+  }
   // A tile core [20, 40) x [0, 20) with 0.5 m cells: exactly 40 x 40 cells from column 40, row 0.
   const CellWindow core = CellWindowOfHalfOpen(Box2d(20, 0, 40, 20), 0.5);
   EXPECT_EQ(core.col0, 40);

@@ -11,13 +11,6 @@ int64_t FloorDiv(int64_t a, int64_t b) { return a / b - ((a % b != 0) && ((a < 0
 
 }  // namespace
 
-int64_t CellIndexOf(double v, double cell_m) {
-  int64_t k = static_cast<int64_t>(std::floor(v / cell_m));
-  while (CellEdge(k, cell_m) > v) --k;
-  while (CellEdge(k + 1, cell_m) <= v) ++k;
-  return k;
-}
-
 CellWindow CellWindow::Grown(int64_t cells) const {
   CellWindow w = *this;
   w.col0 -= cells;

@@ -12,10 +12,16 @@
 
 namespace sacfuse {
 
-// The column (or row) holding coordinate v: floor(v / cell_m), corrected so that Edge(k) <= v < Edge(k + 1) with
-// Edge(k) = k * cell_m computed in double, the one formula for cell edges.
-int64_t CellIndexOf(double v, double cell_m);
 inline double CellEdge(int64_t k, double cell_m) { return static_cast<double>(k) * cell_m; }
+// The column (or row) holding coordinate v (finite): the k with Edge(k) <= v < Edge(k + 1), Edge(k) = k * cell_m
+// computed in double, the one formula for cell edges. Inline, without floor's library call: the DSM and the true
+// ortho ask it twice per point. The truncated quotient is a guess at most a cell or two off; the edges decide.
+inline int64_t CellIndexOf(double v, double cell_m) {
+  int64_t k = static_cast<int64_t>(v / cell_m);
+  while (CellEdge(k, cell_m) > v) --k;
+  while (CellEdge(k + 1, cell_m) <= v) ++k;
+  return k;
+}
 
 struct CellWindow {
   double cell_m = 1.0;
