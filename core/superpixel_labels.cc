@@ -115,10 +115,7 @@ void SuperpixelLabels::CopyRow(int row, int32_t* out) const {
       for (int c0 = 0; c0 < width_; c0 += kBlockPx) {
         const int32_t* palette = palette_.data() + block_begin[c0 / kBlockPx];
         const int c1 = std::min(width_, c0 + kBlockPx);
-        for (int c = c0; c < c1; ++c) {
-          const size_t i = first + static_cast<size_t>(c);
-          out[c] = palette[(indices_[i / 2] >> ((i % 2) * 4)) & 0xF];
-        }
+        for (int c = c0; c < c1; ++c) out[c] = palette[PaletteIndex(first + static_cast<size_t>(c))];
       }
       return;
     }

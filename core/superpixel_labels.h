@@ -45,8 +45,7 @@ class SuperpixelLabels {
       case Storage::kPalette: {
         const size_t block =
             static_cast<size_t>(row / kBlockPx) * blocks_per_row_ + static_cast<size_t>(col / kBlockPx);
-        const int index = (indices_[i / 2] >> ((i % 2) * 4)) & 0xF;
-        return palette_[palette_begin_[block] + static_cast<uint32_t>(index)];
+        return palette_[palette_begin_[block] + static_cast<uint32_t>(PaletteIndex(i))];
       }
       case Storage::kBanded:
         return static_cast<int32_t>(band_base_[static_cast<size_t>(row / kBandRows)] + offsets_[i]);
@@ -84,6 +83,8 @@ class SuperpixelLabels {
   enum class Storage : uint8_t { kPalette, kBanded, kWide };
   // Checks the size and sets banded_ and band_base_ (throws Error when labels.size() != width * height).
   void FindBands(const std::vector<int32_t>& labels);
+  // Palette storage: pixel i's 4-bit index into its block's palette.
+  int PaletteIndex(size_t i) const { return (indices_[i / 2] >> ((i % 2) * 4)) & 0xF; }
   // Tries the palette storage; false (nothing kept) when a block meets more than kMaxPaletteLabels labels.
   bool BuildPalettes(const std::vector<int32_t>& labels);
 
